@@ -1,0 +1,172 @@
+"""Recompute every published number of ``textbook/`` and check its recorded status.
+
+Used three ways, always through :func:`check_example` / :func:`check_formula`:
+``photolib verify`` (the command line), the test-suite (one test per entry) and the notebooks
+(:func:`example_table` prints the book · computed · status table that ends each example).
+
+Status rules (see ``textbook/README.md``):
+
+* ``reproduced`` — the computed value rounded to the printed decimals equals the printed value.
+* ``input-rounding`` — it does not, but |computed − printed| ≤ the recorded bound.
+* ``erratum`` — it does not, and the computed value equals the recorded correct one; if the
+  entry says ``as_printed = true`` the example's "as printed" computation must reproduce the
+  printed value.
+* ``not-reproducible`` — the book lacks the data; the check is that no computation claims it.
+* ``transcribed`` — data only (specifications); the value is shown, nothing to compute.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+from dataclasses import dataclass
+
+from .textbook import Example, Formula, available_chapters, load_chapter
+
+
+def resolve(target: str):
+    """Import ``"package.module:function"``."""
+    module, _, name = target.partition(":")
+    return getattr(importlib.import_module(module), name)
+
+
+@dataclass
+class Row:
+    """One line of the verification report."""
+
+    chapter: int
+    example: str
+    quantity: str
+    book: str
+    computed: str
+    status: str
+    ok: bool
+    detail: str = ""
+    as_printed: str = ""
+
+    def as_dict(self) -> dict:
+        return dict(self.__dict__)
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _format(value, decimals) -> str:
+    if value is None:
+        return "—"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if _is_number(value):
+        if decimals is None:
+            return f"{value:g}"
+        shown = max(decimals + 2, 0)
+        return f"{round(value, shown) + 0.0:.{shown}f}"
+    return str(value)
+
+
+def matches_printed(computed, printed, decimals) -> bool:
+    """True if ``computed`` rounded to ``decimals`` gives ``printed`` (texts must be equal)."""
+    if computed is None:
+        return False
+    if _is_number(printed):
+        if not _is_number(computed) or not math.isfinite(computed):
+            return False
+        half = 0.5 * 10.0 ** (-(decimals or 0))
+        return abs(computed - printed) <= half * (1 + 1e-9) + 1e-12
+    return computed == printed
+
+
+def check_example(example: Example) -> list[Row]:
+    """Recompute an example and judge each of its quantities against its recorded status."""
+    computed = resolve(example.compute)(example.inputs) if example.compute else {}
+    as_printed = resolve(example.as_printed_compute)(example.inputs) if example.as_printed_compute else {}
+    rows = []
+    for q in example.quantities:
+        value = computed.get(q.name)
+        printed_run = as_printed.get(q.name)
+        same = matches_printed(value, q.value, q.decimals)
+        detail = ""
+        if q.status == "reproduced":
+            ok = same
+        elif q.status == "input-rounding":
+            ok = (not same) and _is_number(value) and abs(value - q.value) <= q.bound
+            detail = f"bound {q.bound}"
+        elif q.status == "erratum":
+            right = matches_printed(value, q.correct, q.correct_decimals if q.correct_decimals is not None else q.decimals)
+            ok = (not same) and right
+            if q.as_printed:
+                ok = ok and matches_printed(printed_run, q.value, q.decimals)
+            detail = f"correct {q.correct}"
+        elif q.status == "not-reproducible":
+            ok = not same
+        else:  # transcribed
+            ok = value is None or same
+        if not ok and value is None and q.status != "transcribed":
+            detail = "nothing computed for this quantity"
+        rows.append(Row(example.chapter, example.id, q.name, q.printed, _format(value, q.decimals),
+                        q.status, ok, detail, _format(printed_run, q.decimals) if printed_run is not None else ""))
+    return rows
+
+
+def check_formula(formula: Formula) -> Row:
+    """Compare a printed formula with its sympy derivation: ``reproduced`` iff they agree."""
+    agrees = bool(resolve(formula.compute)(formula.inputs)["printed_equals_derived"])
+    ok = agrees if formula.status == "reproduced" else not agrees
+    return Row(formula.chapter, formula.id, formula.equation, "printed formula",
+               "equals derivation" if agrees else "differs from derivation", formula.status, ok)
+
+
+def verify(chapters=None) -> list[Row]:
+    """Rows for every entry of the given chapters (all by default)."""
+    rows = []
+    for number in chapters or available_chapters():
+        chapter = load_chapter(number)
+        for example in chapter.examples:
+            rows.extend(check_example(example))
+        rows.extend(check_formula(fm) for fm in chapter.formulas)
+    return rows
+
+
+def summary(rows) -> dict:
+    """Counts per status and of entries whose status no longer holds."""
+    counts = {}
+    for r in rows:
+        counts[r.status] = counts.get(r.status, 0) + 1
+    counts["changed"] = sum(not r.ok for r in rows)
+    return counts
+
+
+class Table:
+    """A small table that prints as text (and as HTML in Jupyter)."""
+
+    def __init__(self, header, rows, title=""):
+        self.header, self.rows, self.title = list(header), [list(map(str, r)) for r in rows], title
+
+    def __repr__(self):
+        widths = [max(len(h), *(len(r[i]) for r in self.rows)) if self.rows else len(h)
+                  for i, h in enumerate(self.header)]
+        line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()  # noqa: E731
+        out = ([self.title] if self.title else []) + [line(self.header), line(["-" * w for w in widths])]
+        return "\n".join(out + [line(r) for r in self.rows])
+
+    def _repr_html_(self):
+        import html
+        head = "".join(f"<th>{html.escape(h)}</th>" for h in self.header)
+        body = "".join("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in r) + "</tr>" for r in self.rows)
+        caption = f"<caption>{html.escape(self.title)}</caption>" if self.title else ""
+        return f"<table>{caption}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def example_table(chapter: int, example_id: str) -> Table:
+    """The book · computed · status table that ends each worked example in the notebooks."""
+    example = load_chapter(chapter).example(example_id)
+    rows = check_example(example)
+    with_printed = any(r.as_printed for r in rows)
+    header = ["quantity", "book", "computed"] + (["as printed"] if with_printed else []) + ["status", "check"]
+    body = []
+    for r, q in zip(rows, example.quantities):
+        unit = f" {q.unit}" if q.unit else ""
+        cells = [r.quantity, r.book + unit, r.computed + unit] + ([r.as_printed] if with_printed else [])
+        body.append(cells + [r.status + (f" ({r.detail})" if r.detail else ""), "ok" if r.ok else "CHANGED"])
+    return Table(header, body, f"§{example.section} {example.title}")
