@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .errors import ConvergenceError, InputError
+from .errors import ConvergenceError, DegenerateGeometryError, InputError
 from .rotation import DEFAULT_ORDER, check_order, rotation_angles, rotation_matrix
 
 
@@ -82,21 +82,36 @@ def correct_distortion(xy, io: InteriorOrientation) -> np.ndarray:
     return xy + distortion_correction(xy, io)
 
 
-def apply_distortion(xy_ideal, io: InteriorOrientation, tol: float = 1e-12, max_iter: int = 50) -> np.ndarray:
-    """Ideal → measured coordinates: solve x + d_x(x) = x_ideal by fixed-point iteration.
+def apply_distortion(xy_ideal, io: InteriorOrientation, tol: float = 1e-12, max_iter: int = 30) -> np.ndarray:
+    """Ideal → measured coordinates: solve x + d_x(x, y) = x_ideal, y + d_y(x, y) = y_ideal.
 
     The inverse of :func:`correct_distortion`, needed to simulate what a distorting camera
-    records. Converges for any realistic distortion (|∂d/∂x| ≪ 1).
+    records. Newton's method with the 2×2 Jacobian of (1.2.2) derived by sympy
+    (:func:`photolib.derivations.distortion_model`). Where the correction folds the image over
+    (its Jacobian determinant is not positive) no measured point maps to the ideal one and
+    :class:`DegenerateGeometryError` is raised.
     """
+    from . import derivations
+
     ideal = as_points(xy_ideal, 2, "image coordinates")
     if not io.has_distortion:
         return ideal.copy()
+    residual_fn, jacobian_fn = derivations.distortion_model().compile()
+    coefficients = (io.x0, io.y0, io.k1, io.k2, io.k3, io.p1, io.p2)
     measured = ideal.copy()
     for _ in range(max_iter):
-        update = ideal - distortion_correction(measured, io)
-        if np.max(np.abs(update - measured)) < tol:
-            return update
-        measured = update
+        F = residual_fn(measured[:, 0], measured[:, 1], *coefficients).T - ideal
+        j11, j12, j21, j22 = jacobian_fn(measured[:, 0], measured[:, 1], *coefficients)
+        det = j11 * j22 - j12 * j21
+        if np.any(det <= 0):
+            bad = np.flatnonzero(det <= 0)[:5].tolist()
+            raise DegenerateGeometryError(
+                f"points {bad} lie where the distortion correction (1.2.2) folds the image over; "
+                "it has no inverse there")
+        step = np.column_stack([(j22 * F[:, 0] - j12 * F[:, 1]) / det, (j11 * F[:, 1] - j21 * F[:, 0]) / det])
+        measured = measured - step
+        if np.max(np.abs(step)) < tol * max(1.0, float(np.max(np.abs(ideal)))):
+            return measured
     raise ConvergenceError("inverting the distortion model did not converge; are the coefficients realistic?")
 
 

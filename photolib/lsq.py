@@ -204,3 +204,504 @@ def gauss_newton(linearize: Callable[[np.ndarray], tuple], x0, P=None, *, tol=1e
     return Adjustment(x=x + delta, residuals=V, mu=mu, Q=Q, std=std, corr=corr,
                       dof=V.shape[0] - x.shape[0] if dof is None else dof,
                       iterations=len(history), converged=True, history=history, names=tuple(names))
+
+
+# --- Chapter 3, §3.5: block-structured normal equations and their reduction ---------------------
+#
+# A bundle block has two kinds of unknowns: the exterior orientation of each image ("frames",
+# δ₁, six per image) and the coordinates of each point (δ₂, three per point). Every image
+# observation involves one image and one point, so with the book's partition (3.5.13)
+#
+#     ⎡N₁₁  N₁₂⎤ ⎡δ₁⎤   ⎡L₁ᴺ⎤
+#     ⎣N₁₂ᵀ N₂₂⎦ ⎣δ₂⎦ = ⎣L₂ᴺ⎦                                           (3.5.13)
+#
+# N₁₁ is block diagonal with 6×6 blocks, N₂₂ block diagonal with 3×3 blocks and N₁₂ sparse
+# (figs. 3.11/3.12). NOTE the sign convention: (3.5.8) writes N·δ + Lᴺ = 0 with Lᴺ = AᵀPL, but
+# (3.5.13)–(3.5.16) write N·δ = Lᴺ; there Lᴺ stands for −AᵀPL, and so it does below.
+# Eliminating the points from the second row of (3.5.14), δ₂ = N₂₂⁻¹(L₂ᴺ − N₁₂ᵀδ₁), gives the
+# reduced ("Schur complement") system of the image unknowns only
+#
+#     (N₁₁ − N₁₂N₂₂⁻¹N₁₂ᵀ)·δ₁ = L₁ᴺ − N₁₂N₂₂⁻¹L₂ᴺ                        (3.5.16)
+#
+# whose size is 6·(number of images) whatever the number of points, and N₂₂⁻¹ is a batch of
+# independent 3×3 inverses. Eliminating the images instead gives
+#
+#     (N₂₂ − N₁₂ᵀN₁₁⁻¹N₁₂)·δ₂ = L₂ᴺ − N₁₂ᵀN₁₁⁻¹L₁ᴺ                        (3.5.15, corrected)
+#
+# — the book prints the left-hand matrix with the opposite sign, (N₁₂ᵀN₁₁⁻¹N₁₂ − N₂₂), which
+# returns −δ₂ (the line before it in the book is right; the sign is lost in the last step).
+
+
+def solve_partitioned_normal_equations(N11, N12, N22, L1, L2, eliminate: str = "points"):
+    """Solve (3.5.13) by eliminating one group of unknowns — dense, for small systems and teaching.
+
+    Parameters
+    ----------
+    N11, N12, N22 : arrays
+        Blocks of the normal matrix, (n₁×n₁), (n₁×n₂), (n₂×n₂).
+    L1, L2 : arrays
+        Right-hand sides **in the convention of (3.5.13)**: N·δ = Lᴺ, i.e. Lᴺ = −AᵀPL.
+    eliminate : {"points", "eo"}
+        ``"points"``: reduce onto δ₁ by (3.5.16), then δ₂ = N₂₂⁻¹(L₂ᴺ − N₁₂ᵀδ₁);
+        ``"eo"``: reduce onto δ₂ by the sign-corrected (3.5.15), then δ₁ = N₁₁⁻¹(L₁ᴺ − N₁₂δ₂).
+
+    Returns
+    -------
+    delta1, delta2 : arrays
+    """
+    N11, N12, N22 = (np.atleast_2d(np.asarray(M, dtype=float)) for M in (N11, N12, N22))
+    L1, L2 = np.asarray(L1, dtype=float), np.asarray(L2, dtype=float)
+    if eliminate == "points":
+        iN22 = np.linalg.inv(N22)
+        d1 = np.linalg.solve(N11 - N12 @ iN22 @ N12.T, L1 - N12 @ iN22 @ L2)      # (3.5.16)
+        d2 = iN22 @ (L2 - N12.T @ d1)                                              # (3.5.14), row 2
+    elif eliminate == "eo":
+        iN11 = np.linalg.inv(N11)
+        d2 = np.linalg.solve(N22 - N12.T @ iN11 @ N12, L2 - N12.T @ iN11 @ L1)    # (3.5.15) corrected
+        d1 = iN11 @ (L1 - N12 @ d2)                                                # (3.5.14), row 1
+    else:
+        raise InputError(f"eliminate must be 'points' or 'eo', got {eliminate!r}")
+    return d1, d2
+
+
+@dataclass
+class BlockCorrectionEquations:
+    """The correction equations (3.5.2)–(3.5.4) of a block, grouped by image observation.
+
+    Observation k (r rows, r = 2 for x and y) involves image ``frame[k]`` and point ``point[k]``:
+
+        B1[k]·δ₁[frame[k]] + B2[k]·δ₂[point[k]] + L[k] = V[k]
+
+    Attributes
+    ----------
+    frame, point : int arrays (m,)
+    B1 : array (m, r, q)
+        Derivatives by the q unknowns of the image (q = 6: X_S, Y_S, Z_S, ω, α, κ).
+    B2 : array (m, r, 3)
+        Derivatives by the point coordinates (ignored for points held fixed, (3.5.3)).
+    L : array (m, r)
+        Free terms: model value at the approximation (computed − measured).
+    P : array (m, r) or float
+        Weights p = 1/m² of the measurements (3.5.7).
+    """
+
+    frame: np.ndarray
+    point: np.ndarray
+    B1: np.ndarray
+    B2: np.ndarray
+    L: np.ndarray
+    P: np.ndarray | float = 1.0
+
+
+@dataclass
+class BlockSolution:
+    """One solved linear step of a block: corrections and (optionally) cofactor blocks."""
+
+    delta1: np.ndarray                  # (n_frames, q) corrections of the image unknowns
+    delta2: np.ndarray                  # (n_points, 3) corrections of the points
+    Q1: np.ndarray | None = None        # (n_frames, q, q) diagonal blocks of N⁻¹ for the images
+    Q2: np.ndarray | None = None        # (n_points, 3, 3) diagonal blocks of N⁻¹ for the points
+    timings: dict = field(default_factory=dict)
+
+
+def _block_sum(index, blocks, n):
+    """Σ of ``blocks[k]`` over k with ``index[k] == i``, for i in range(n) → (n, *block shape)."""
+    shape = blocks.shape[1:]
+    size = int(np.prod(shape))
+    flat = (index[:, None] * size + np.arange(size)).ravel()
+    return np.bincount(flat, weights=blocks.reshape(-1), minlength=n * size).reshape((n,) + shape)
+
+
+def _block_diagonal(blocks):
+    """A scipy.sparse block-diagonal matrix from an (n, b, b) stack."""
+    from scipy import sparse
+    n, b, _ = blocks.shape
+    return sparse.bsr_matrix((blocks, np.arange(n), np.arange(n + 1)), shape=(n * b, n * b)).tocsr()
+
+
+def _invert_3x3_blocks(blocks, rcond):
+    """Vectorised inverses of the 3×3 diagonal blocks of N₂₂ (one per point).
+
+    Each block is scaled to unit diagonal first; a block whose smallest eigenvalue is below
+    ``rcond`` (rays intersecting at a grazing angle, a point not determined) raises
+    :class:`DegenerateGeometryError` naming the points.
+    """
+    d = np.sqrt(np.einsum("kii->ki", blocks))
+    if np.any(~(d > 0)):
+        bad = np.flatnonzero(~np.all(d > 0, axis=1))
+        raise DegenerateGeometryError(f"points {bad[:10].tolist()} are not determined by any observation")
+    scaled = blocks / (d[:, :, None] * d[:, None, :])
+    low = np.linalg.eigvalsh(scaled)[:, 0]
+    if np.any(low < rcond):
+        bad = np.flatnonzero(low < rcond)
+        raise DegenerateGeometryError(
+            f"points {bad[:10].tolist()} are not determined: their rays are (nearly) parallel "
+            f"(smallest scaled eigenvalue {low.min():.1e})")
+    return np.linalg.inv(scaled) / (d[:, :, None] * d[:, None, :])
+
+
+class _Factorisation:
+    """Cholesky-like factorisation of the (scaled) reduced matrix (3.5.16), dense or sparse."""
+
+    def __init__(self, S, rcond, dense_limit):
+        import scipy.linalg
+        from scipy import sparse
+        from scipy.sparse import linalg as spla
+        n = S.shape[0]
+        d = np.sqrt(S.diagonal())
+        if np.any(~(d > 0)):
+            raise DegenerateGeometryError(
+                f"image unknowns {np.flatnonzero(~(d > 0))[:10].tolist()} are not determined by any observation")
+        self.scale = 1.0 / d
+        Ds = sparse.diags(self.scale)
+        Ss = (Ds @ S @ Ds)
+        self.n = n
+        self.dense = n <= dense_limit
+        if self.dense:
+            Sd = Ss.toarray()
+            try:
+                self.cho = scipy.linalg.cho_factor(Sd, lower=True, check_finite=False)
+            except np.linalg.LinAlgError:
+                pivots = np.zeros(1)
+            else:
+                pivots = np.diag(self.cho[0]) ** 2
+        else:
+            # SuperLU in symmetric mode (no row pivoting, minimum-degree ordering of Sᵀ+S):
+            # for a positive definite S this is a sparse Cholesky factorisation up to scaling.
+            try:
+                self.lu = spla.splu(Ss.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                                    options={"SymmetricMode": True})
+            except RuntimeError:
+                pivots = np.zeros(1)
+            else:
+                pivots = self.lu.U.diagonal()
+        self.min_pivot = float(np.min(pivots)) if pivots.size else 0.0
+        if not self.min_pivot > rcond:
+            raise DegenerateGeometryError(
+                "the reduced normal matrix (3.5.16) is singular (smallest scaled pivot "
+                f"{self.min_pivot:.1e}): the block has a datum defect — too little control "
+                "(fixed or weighted control points, GNSS centres) to fix its position, rotation and scale")
+
+    def solve(self, rhs):
+        import scipy.linalg
+        b = rhs * (self.scale if rhs.ndim == 1 else self.scale[:, None])
+        x = scipy.linalg.cho_solve(self.cho, b, check_finite=False) if self.dense else self.lu.solve(b)
+        return x * (self.scale if rhs.ndim == 1 else self.scale[:, None])
+
+    def inverse(self, chunk: int = 512):
+        """S⁻¹ as a dense array (column chunks for the sparse factorisation)."""
+        if self.dense:
+            return self.solve(np.eye(self.n))
+        out = np.empty((self.n, self.n))
+        for start in range(0, self.n, chunk):
+            stop = min(start + chunk, self.n)
+            e = np.zeros((self.n, stop - start))
+            e[np.arange(start, stop), np.arange(stop - start)] = 1.0
+            out[:, start:stop] = self.solve(e)
+        return out
+
+
+def _pairs_by_point(point, n_points):
+    """All ordered pairs (a, b) of observations that see the same point (for N₂₂ cofactors)."""
+    order = np.argsort(point, kind="stable")
+    counts = np.bincount(point, minlength=n_points)
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    n_of = counts[point[order]]
+    a = np.repeat(order, n_of)
+    first = np.repeat(starts[point[order]], n_of)
+    offset = np.arange(a.size) - np.repeat(np.cumsum(n_of) - n_of, n_of)
+    b = order[first + offset]
+    return a, b
+
+
+def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
+                                 frame_prior=None, point_prior=None, free_frames=None, free_points=None,
+                                 covariance: bool = False, rcond: float = 1e-12,
+                                 dense_limit: int = 1200) -> BlockSolution:
+    """One linear step of a block adjustment by the reduction (3.5.13)–(3.5.16).
+
+    Builds N₁₁ (6×6 blocks), N₂₂ (3×3 blocks) and the sparse N₁₂ from the correction equations,
+    eliminates the points (3.5.16) with vectorised 3×3 block inverses, factorises the reduced
+    matrix of the image unknowns (dense Cholesky for small blocks, sparse symmetric LU otherwise)
+    and recovers the points by back-substitution δ₂ = N₂₂⁻¹(L₂ᴺ − N₁₂ᵀδ₁) (second row of (3.5.14)).
+
+    Parameters
+    ----------
+    eq : BlockCorrectionEquations
+        The image-observation rows (3.5.2)/(3.5.3).
+    n_frames, n_points : int
+        Number of images and points.
+    frame_prior, point_prior : (l, p) pairs of arrays (n_frames, q) / (n_points, 3), optional
+        Direct observations of single unknowns, δ + l = v with weight p (p = 0: none):
+        control points (3.5.17), GNSS centres (3.5.18), INS angles (3.5.19).
+    free_frames, free_points : bool arrays, optional
+        False holds an image / a point fixed (its correction is 0, its columns drop out: (3.5.3),
+        (3.5.4)). Default: all free.
+    covariance : bool
+        Also return the diagonal blocks of Q = N⁻¹ (for m_j = μ√Q_jj, (3.5.11)): Q₁₁ = S⁻¹ and
+        Q₂₂ = N₂₂⁻¹ + N₂₂⁻¹N₁₂ᵀQ₁₁N₁₂N₂₂⁻¹ per point. Needs S⁻¹ dense: O((6n)²) memory.
+    rcond : float
+        Smallest acceptable pivot of the scaled reduced matrix; below it the block is declared
+        singular (datum defect) with :class:`DegenerateGeometryError`.
+    dense_limit : int
+        Reduced systems up to this size are factorised densely.
+    """
+    import time
+    from scipy import sparse
+
+    t0 = time.perf_counter()
+    timings = {}
+    m, r, q = eq.B1.shape
+    P = np.broadcast_to(np.asarray(eq.P, dtype=float), (m, r))
+    free_frames = np.ones(n_frames, bool) if free_frames is None else np.asarray(free_frames, bool)
+    free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
+    on_free = free_points[eq.point]
+
+    # normal-equation blocks (3.5.8) in the convention N·δ = Lᴺ of (3.5.13)
+    PB1 = P[:, :, None] * eq.B1
+    PB2 = P[on_free, :, None] * eq.B2[on_free]
+    N11 = _block_sum(eq.frame, np.einsum("kri,krj->kij", PB1, eq.B1), n_frames)
+    L1 = -_block_sum(eq.frame, np.einsum("kri,kr->ki", PB1, eq.L), n_frames)
+    pts = eq.point[on_free]
+    N22 = _block_sum(pts, np.einsum("kri,krj->kij", PB2, eq.B2[on_free]), n_points)
+    L2 = -_block_sum(pts, np.einsum("kri,kr->ki", PB2, eq.L[on_free]), n_points)
+    W = np.einsum("kri,krj->kij", PB1[on_free], eq.B2[on_free])          # the 6×3 blocks of N₁₂
+    for prior, N, Lv in ((frame_prior, N11, L1), (point_prior, N22, L2)):
+        if prior is not None:
+            l, p = (np.asarray(a, dtype=float) for a in prior)
+            idx = np.arange(p.shape[1])
+            N[:, idx, idx] += p
+            Lv -= p * l
+    # fixed points/images: identity placeholders, their corrections are forced to zero below
+    N22[~free_points] = np.eye(3)
+    L2[~free_points] = 0.0
+    N11[~free_frames] = np.eye(q)
+    L1[~free_frames] = 0.0
+    on_free_frame = free_frames[eq.frame[on_free]]
+    frm = eq.frame[on_free]
+    W = W * on_free_frame[:, None, None]
+    timings["normal equations"] = time.perf_counter() - t0
+
+    # reduction (3.5.16): S = N₁₁ − N₁₂N₂₂⁻¹N₁₂ᵀ, s = L₁ᴺ − N₁₂N₂₂⁻¹L₂ᴺ
+    t = time.perf_counter()
+    iN22 = _invert_3x3_blocks(N22, rcond)
+    rows = (frm[:, None, None] * q + np.arange(q)[None, :, None]) * np.ones((1, 1, 3), int)
+    cols = (pts[:, None, None] * 3 + np.arange(3)[None, None, :]) * np.ones((1, q, 1), int)
+    N12 = sparse.csr_matrix((W.ravel(), (rows.ravel(), cols.ravel())), shape=(n_frames * q, n_points * 3))
+    iN22_sp = _block_diagonal(iN22)
+    Y = N12 @ iN22_sp                                                       # N₁₂N₂₂⁻¹
+    S = _block_diagonal(N11) - Y @ N12.T
+    s = L1.ravel() - Y @ L2.ravel()
+    keep = np.repeat(free_frames, q)
+    S = S[keep][:, keep]
+    timings["reduction"] = time.perf_counter() - t
+
+    t = time.perf_counter()
+    fac = _Factorisation(S.tocsr(), rcond, dense_limit)
+    timings["factorisation"] = time.perf_counter() - t
+
+    t = time.perf_counter()
+    d1 = np.zeros(n_frames * q)
+    d1[keep] = fac.solve(s[keep])
+    d2 = np.einsum("kij,kj->ki", iN22, L2 - (N12.T @ d1).reshape(n_points, 3))   # (3.5.14), row 2
+    d2[~free_points] = 0.0
+    timings["back-substitution"] = time.perf_counter() - t
+
+    Q1 = Q2 = None
+    if covariance:
+        t = time.perf_counter()
+        Q11 = np.zeros((n_frames * q, n_frames * q))
+        Q11[np.ix_(keep, keep)] = fac.inverse()
+        Q1 = Q11.reshape(n_frames, q, n_frames, q)[np.arange(n_frames), :, np.arange(n_frames), :]
+        # Q₂₂ per point: N₂₂⁻¹ + N₂₂⁻¹ (Σ_a,b W_aᵀ Q₁₁[c_a, c_b] W_b) N₂₂⁻¹ over observation pairs
+        a, b = _pairs_by_point(pts, n_points)
+        T = np.zeros((n_points, 3, 3))
+        Q11b = Q11.reshape(n_frames, q, n_frames, q)
+        for start in range(0, a.size, 100_000):
+            sa, sb = a[start:start + 100_000], b[start:start + 100_000]
+            blocks = np.einsum("kia,kij,kjb->kab", W[sa], Q11b[frm[sa], :, frm[sb], :], W[sb])
+            T += _block_sum(pts[sa], blocks, n_points)
+        Q2 = iN22 + iN22 @ T @ iN22
+        Q2[~free_points] = 0.0
+        timings["covariance"] = time.perf_counter() - t
+    return BlockSolution(d1.reshape(n_frames, q), d2, Q1, Q2, timings)
+
+
+@dataclass
+class BlockAdjustment:
+    """Result of :func:`block_gauss_newton`: a bundle-type adjustment with its accuracy."""
+
+    frames: np.ndarray            # (n_frames, q) adjusted image unknowns
+    points: np.ndarray            # (n_points, 3) adjusted points
+    residuals: np.ndarray         # (m, r) V of the image observations at the solution
+    frame_residuals: np.ndarray   # (n_frames, q) V of the direct image-unknown observations (0 if none)
+    point_residuals: np.ndarray   # (n_points, 3) V of the direct point observations (0 if none)
+    mu: float                     # (3.5.12)
+    dof: int                      # M − N
+    frames_std: np.ndarray | None  # m_j (3.5.11) of the image unknowns
+    points_std: np.ndarray | None  # m_j of the point coordinates
+    Q1: np.ndarray | None
+    Q2: np.ndarray | None
+    iterations: int
+    converged: bool
+    history: list = field(default_factory=list)
+    timings: dict = field(default_factory=dict)
+
+
+def block_gauss_newton(linearize, frames0, points0, *, frame_observations=None, point_observations=None,
+                       free_frames=None, free_points=None, tol_frames=1e-8, tol_points=1e-6,
+                       max_iter: int = 30, covariance: bool = False, rcond: float = 1e-12,
+                       dense_limit: int = 1200, progress=None) -> BlockAdjustment:
+    """Gauss–Newton iterations of a block adjustment solved by the reduction (3.5.16).
+
+    The same algorithm as :func:`gauss_newton` (δ = −N⁻¹Lᴺ (3.5.9), iterate until the corrections
+    are negligible, then μ (3.5.12) and m_j (3.5.11)), with the linear step done by
+    :func:`solve_block_normal_equations` so that a block of thousands of images stays sparse.
+
+    Parameters
+    ----------
+    linearize : callable
+        ``linearize(frames, points) -> BlockCorrectionEquations`` at the approximation.
+    frames0, points0 : arrays (n_frames, q), (n_points, 3)
+        Approximate values.
+    frame_observations, point_observations : (values, weights) pairs, optional
+        Direct observations of image unknowns / coordinates, same shapes as ``frames0`` /
+        ``points0``; weight 0 (value NaN allowed) means "not observed". Their correction
+        equations are δ + l = v with l = approximate − measured, (3.5.17)–(3.5.19).
+    free_frames, free_points : bool arrays, optional
+        False holds the unknowns fixed at their start values.
+    tol_frames, tol_points : float or arrays (q,), (3,)
+        Convergence when every |δ| is below them.
+    max_iter : int
+        Iterations before :class:`ConvergenceError`.
+    covariance : bool
+        Compute Q blocks and m_j at the end (see :func:`solve_block_normal_equations`).
+    progress : callable, optional
+        Called with each :class:`IterationRecord` (``delta`` holds max |δ₁|, max |δ₂|).
+    """
+    import time
+
+    frames = np.array(frames0, dtype=float)
+    points = np.array(points0, dtype=float)
+    if frames.ndim != 2 or points.ndim != 2 or points.shape[1] != 3:
+        raise InputError(f"approximations must be (n_frames, q) and (n_points, 3), got {frames.shape}, {points.shape}")
+    if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points))):
+        raise InputError("the approximate values contain NaN or inf")
+    n_frames, q = frames.shape
+    n_points = points.shape[0]
+    free_frames = np.ones(n_frames, bool) if free_frames is None else np.asarray(free_frames, bool)
+    free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
+
+    def direct(obs, shape):
+        if obs is None:
+            return None, None
+        values, weights = (np.broadcast_to(np.asarray(a, dtype=float), shape) for a in obs)
+        weights = np.where(np.isfinite(values), weights, 0.0)
+        if np.any(~np.isfinite(weights)) or np.any(weights < 0):
+            raise InputError("weights of the direct observations must be finite and non-negative")
+        return np.where(weights > 0, values, 0.0), weights
+
+    fv, fw = direct(frame_observations, frames.shape)
+    pv, pw = direct(point_observations, points.shape)
+    tol1 = np.broadcast_to(np.asarray(tol_frames, dtype=float), (q,))
+    tol2 = np.broadcast_to(np.asarray(tol_points, dtype=float), (3,))
+    timings = {"jacobian": 0.0}
+    history = []
+
+    def priors():
+        fp = None if fw is None else (np.where(fw > 0, frames - fv, 0.0), fw)       # l = x⁰ − x_measured
+        pp = None if pw is None else (np.where(pw > 0, points - pv, 0.0), pw)
+        return fp, pp
+
+    def vtpv(eq, fp, pp):
+        total = float(np.sum(np.broadcast_to(eq.P, eq.L.shape) * eq.L ** 2))
+        for pr in (fp, pp):
+            if pr is not None:
+                total += float(np.sum(pr[1] * pr[0] ** 2))
+        return total
+
+    n_unknowns = q * int(free_frames.sum()) + 3 * int(free_points.sum())
+    growth = 0
+    for iteration in range(1, max_iter + 1):
+        t = time.perf_counter()
+        eq = linearize(frames, points)
+        timings["jacobian"] += time.perf_counter() - t
+        fp, pp = priors()
+        value = vtpv(eq, fp, pp)
+        if not np.isfinite(value):
+            raise ConvergenceError(f"the correction equations became NaN/inf at iteration {iteration}", history)
+        if iteration == 1:
+            m_rows = eq.L.size + (0 if fw is None else int((fw > 0).sum())) + (0 if pw is None else int((pw > 0).sum()))
+            if m_rows <= n_unknowns:
+                raise InputError(f"{m_rows} correction equations cannot determine {n_unknowns} unknowns (M ≤ N)")
+        sol = solve_block_normal_equations(eq, n_frames, n_points, frame_prior=fp, point_prior=pp,
+                                           free_frames=free_frames, free_points=free_points,
+                                           covariance=False, rcond=rcond, dense_limit=dense_limit)
+        for key, val in sol.timings.items():
+            timings[key] = timings.get(key, 0.0) + val
+        step = np.array([np.abs(sol.delta1).max(initial=0.0), np.abs(sol.delta2).max(initial=0.0)])
+        record = IterationRecord(iteration, np.empty(0), step, value)
+        history.append(record)
+        if progress is not None:
+            progress(record)
+        if len(history) > 1 and value > history[-2].vtpv * (1 + 1e-9):
+            growth += 1
+            if growth >= 4:
+                raise ConvergenceError(f"diverging: VᵀPV grew in {growth} consecutive iterations", history)
+        else:
+            growth = 0
+        frames = frames + sol.delta1
+        points = points + sol.delta2
+        if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points))):
+            raise ConvergenceError(f"the iteration produced NaN/inf at step {iteration}", history)
+        if np.all(np.abs(sol.delta1) < tol1) and np.all(np.abs(sol.delta2) < tol2):
+            break
+    else:
+        raise ConvergenceError(
+            f"no convergence in {max_iter} iterations: last max |δ| = {step[0]:.3g} (images), "
+            f"{step[1]:.3g} (points)", history)
+
+    # residuals and accuracy at the solution (3.5.11)/(3.5.12)
+    t = time.perf_counter()
+    eq = linearize(frames, points)
+    timings["jacobian"] += time.perf_counter() - t
+    fp, pp = priors()
+    m_rows = eq.L.size + (0 if fw is None else int((fw > 0).sum())) + (0 if pw is None else int((pw > 0).sum()))
+    dof = m_rows - n_unknowns
+    mu = float(np.sqrt(vtpv(eq, fp, pp) / dof))
+    Q1 = Q2 = fstd = pstd = None
+    if covariance:
+        sol = solve_block_normal_equations(eq, n_frames, n_points, frame_prior=fp, point_prior=pp,
+                                           free_frames=free_frames, free_points=free_points,
+                                           covariance=True, rcond=rcond, dense_limit=dense_limit)
+        timings["covariance"] = sol.timings["covariance"]
+        Q1, Q2 = sol.Q1, sol.Q2
+        fstd = mu * np.sqrt(np.einsum("kii->ki", Q1))
+        pstd = mu * np.sqrt(np.einsum("kii->ki", Q2))
+    zero_f = np.zeros_like(frames) if fp is None else fp[0]
+    zero_p = np.zeros_like(points) if pp is None else pp[0]
+    return BlockAdjustment(frames=frames, points=points, residuals=eq.L.copy(), frame_residuals=zero_f,
+                           point_residuals=zero_p, mu=mu, dof=dof, frames_std=fstd, points_std=pstd,
+                           Q1=Q1, Q2=Q2, iterations=len(history), converged=True, history=history,
+                           timings=timings)
+
+
+def block_equations_dense(eq: BlockCorrectionEquations, n_frames: int, n_points: int, free_points=None):
+    """The same correction equations as one dense (B, L, P) for :func:`solve_normal_equations`.
+
+    Columns: the q unknowns of every image, then X, Y, Z of every free point — the layout of
+    fig. 3.11. Only for small blocks (checks, teaching): B has m·r rows and q·n + 3·k columns.
+    """
+    m, r, q = eq.B1.shape
+    free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
+    column = np.cumsum(free_points) - 1
+    n_cols = q * n_frames + 3 * int(free_points.sum())
+    B = np.zeros((m * r, n_cols))
+    rows = np.arange(m * r).reshape(m, r)
+    for i in range(q):
+        B[rows, (eq.frame * q + i)[:, None]] = eq.B1[:, :, i]
+    on = free_points[eq.point]
+    for i in range(3):
+        B[rows[on], (q * n_frames + 3 * column[eq.point[on]] + i)[:, None]] = eq.B2[on, :, i]
+    P = np.broadcast_to(np.asarray(eq.P, dtype=float), (m, r)).ravel()
+    return B, eq.L.ravel(), P

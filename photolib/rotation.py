@@ -92,8 +92,10 @@ def rotation_angles(A, order: str = DEFAULT_ORDER, singular: str = "raise"):
     """Angles (ω, α, κ) of a rotation matrix: (1.3.6) for ``"kaw"``, (1.3.3) for ``"wak"``.
 
     The book writes ω and κ with arctan of a ratio and α with arcsin; here atan2 keeps every
-    quadrant and α is taken as atan2(sin α, |cos α|) so that it stays accurate near ±90°.
-    α is returned in [−90°, 90°], ω and κ in (−180°, 180°].
+    quadrant and α is taken as atan2(sin α, |cos α|) so that it stays accurate near ±90°;
+    κ is read off the rotation left after removing ω and α, so that the angles reproduce the
+    matrix to rounding error even within 1e-12 rad of the singularity. α is returned in
+    [−90°, 90°], ω and κ in (−180°, 180°].
 
     At α = ±90° (cos α = 0, gimbal lock) only ω ∓ κ (kaw) or ω ± κ (wak) is defined. With
     ``singular="raise"`` (default) a :class:`DegenerateGeometryError` is raised; with
@@ -104,10 +106,8 @@ def rotation_angles(A, order: str = DEFAULT_ORDER, singular: str = "raise"):
     A = _check_matrix(A)
     if order == "kaw":
         sin_a, cos_w_part, sin_w_part = -A[..., 2, 0], A[..., 2, 2], A[..., 2, 1]
-        cos_k_part, sin_k_part = A[..., 0, 0], A[..., 1, 0]
     else:
         sin_a, cos_w_part, sin_w_part = A[..., 0, 2], A[..., 2, 2], -A[..., 1, 2]
-        cos_k_part, sin_k_part = A[..., 0, 0], -A[..., 0, 1]
     cos_a = np.hypot(cos_w_part, sin_w_part)
     alpha = np.arctan2(sin_a, cos_a)
     gimbal = cos_a < 1e-12
@@ -119,7 +119,15 @@ def rotation_angles(A, order: str = DEFAULT_ORDER, singular: str = "raise"):
         if singular != "kappa-zero":
             raise InputError("singular must be 'raise' or 'kappa-zero'")
     omega = np.arctan2(sin_w_part, cos_w_part)
-    kappa = np.arctan2(sin_k_part, cos_k_part)
+    # κ from what is left of A once the ω and α rotations are removed: A_κ = A (A_α A_ω)ᵀ (kaw)
+    # or A_κ = (A_ω A_α)ᵀ A (wak). Reading κ off a₁₁, a₂₁ (or a₁₁, −a₁₂) directly would take
+    # it from elements of size cos α, which near α = ±90° lose their relative accuracy; the
+    # angles then no longer reproduce the matrix (error ≈ 1e-16 / cos α).
+    if order == "kaw":
+        rest = A @ np.swapaxes(rot_y(alpha) @ rot_x(omega), -1, -2)
+    else:
+        rest = np.swapaxes(rot_x(omega) @ rot_y(alpha), -1, -2) @ A
+    kappa = np.arctan2(rest[..., 1, 0], rest[..., 0, 0])
     if np.any(gimbal):
         sign = np.sign(sin_a)
         if order == "kaw":   # A = A_κ A_±90 A_ω with κ = 0: a12 = ±sin ω, a22 = cos ω

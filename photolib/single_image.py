@@ -20,8 +20,31 @@ from .camera import ExteriorOrientation, InteriorOrientation, apply_distortion, 
 from .errors import DegenerateGeometryError, InputError
 
 
+def _positive(value, name):
+    """Validate a positive finite scalar (a focal length or a flying height)."""
+    value = float(value)
+    if not np.isfinite(value) or value <= 0:
+        raise InputError(f"{name} must be positive and finite, got {value}")
+    return value
+
+
+def _rotation(A) -> np.ndarray:
+    """Validate a finite 3×3 matrix."""
+    A = np.asarray(A, dtype=float)
+    if A.shape != (3, 3) or not np.all(np.isfinite(A)):
+        raise InputError(f"A must be a finite 3×3 matrix, got shape {A.shape}")
+    return A
+
+
 def principal_to_nadir_distance(f, tilt):
-    """on = f·tan α₀: distance in the image from the principal point o to the nadir point n (§1.1)."""
+    """on = f·tan α₀: distance in the image from the principal point o to the nadir point n (§1.1).
+
+    ``tilt`` (radians) must satisfy |α₀| < π/2: at 90° the nadir point is at infinity.
+    """
+    f = _positive(f, "focal length f")
+    tilt = np.asarray(tilt, dtype=float)
+    if not np.all(np.isfinite(tilt)) or np.any(np.abs(tilt) >= np.pi / 2):
+        raise InputError("the tilt α₀ must be finite and |α₀| < 90°")
     return f * np.tan(tilt)
 
 
@@ -57,7 +80,10 @@ def image_to_ground(xy, Z, eo: ExteriorOrientation, io: InteriorOrientation, dis
     xy = as_points(xy, 2, "image coordinates")
     if distortion and io.has_distortion:
         xy = correct_distortion(xy, io)
-    Z = np.broadcast_to(np.asarray(Z, dtype=float), (len(xy),))
+    try:
+        Z = np.broadcast_to(np.asarray(Z, dtype=float), (len(xy),))
+    except ValueError:
+        raise InputError(f"heights: expected a scalar or {len(xy)} values, got shape {np.shape(Z)}") from None
     if not np.all(np.isfinite(Z)):
         raise InputError("heights contain NaN or inf")
     r = np.column_stack([xy[:, 0] - io.x0, xy[:, 1] - io.y0, np.full(len(xy), -io.f)])
@@ -75,8 +101,7 @@ def horizontal_image_scale(f, H):
 
     ``f`` in mm and ``H`` in m; returns the scale denominator m = H/f (dimensionless).
     """
-    if f <= 0 or H <= 0:
-        raise InputError("f and H must be positive")
+    f, H = _positive(f, "focal length f"), _positive(H, "flying height H")
     return H / (f / 1000.0)
 
 
@@ -86,6 +111,10 @@ def planimetric_error_from_height_error(x, y, f, dZ):
     The book gives magnitudes: the displacement points away from the nadir for a point
     assumed too low. Returns (ΔX, ΔY, ΔR) in the units of ΔZ.
     """
+    f = _positive(f, "focal length f")
+    x, y, dZ = (np.asarray(v, dtype=float) for v in (x, y, dZ))
+    if not all(np.all(np.isfinite(v)) for v in (x, y, dZ)):
+        raise InputError("x, y and ΔZ must be finite")
     dX = np.asarray(x, dtype=float) / f * dZ
     dY = np.asarray(y, dtype=float) / f * dZ
     return dX, dY, np.hypot(dX, dY)
@@ -98,7 +127,7 @@ def tilted_to_horizontal(xy, A, f, f0, x0=0.0, y0=0.0) -> np.ndarray:
     with the second row. ``A`` orients the tilted camera relative to the horizontal one.
     """
     xy = as_points(xy, 2, "image coordinates")
-    A = np.asarray(A, dtype=float)
+    A, f, f0 = _rotation(A), _positive(f, "focal length f"), _positive(f0, "focal length f0")
     r = np.column_stack([xy[:, 0] - x0, xy[:, 1] - y0, np.full(len(xy), -float(f))])
     v = r @ A.T                                             # (1.7.3)
     if np.any(v[:, 2] >= 0):
@@ -112,7 +141,7 @@ def horizontal_to_tilted(xy0, A, f, f0, x0=0.0, y0=0.0) -> np.ndarray:
     x = x₀ − f(a₁₁x⁰ + a₂₁y⁰ − a₃₁f⁰)/(a₁₃x⁰ + a₂₃y⁰ − a₃₃f⁰), likewise y with the second column.
     """
     xy0 = as_points(xy0, 2, "image coordinates")
-    A = np.asarray(A, dtype=float)
+    A, f, f0 = _rotation(A), _positive(f, "focal length f"), _positive(f0, "focal length f0")
     r0 = np.column_stack([xy0[:, 0], xy0[:, 1], np.full(len(xy0), -float(f0))])
     v = r0 @ A                                              # (1.7.8): Aᵀ r⁰
     if np.any(v[:, 2] >= 0):

@@ -89,6 +89,7 @@ class Formula:
     correct: str = ""
     diagnosis: str = ""
     proof: str = ""
+    notes: str = ""
     seed: str = ""
 
 

@@ -167,6 +167,6 @@ def example_table(chapter: int, example_id: str) -> Table:
     body = []
     for r, q in zip(rows, example.quantities):
         unit = f" {q.unit}" if q.unit else ""
-        cells = [r.quantity, r.book + unit, r.computed + unit] + ([r.as_printed] if with_printed else [])
+        cells = [r.quantity, r.book, r.computed + unit] + ([r.as_printed] if with_printed else [])
         body.append(cells + [r.status + (f" ({r.detail})" if r.detail else ""), "ok" if r.ok else "CHANGED"])
     return Table(header, body, f"§{example.section} {example.title}")

@@ -1,0 +1,205 @@
+"""Chapter 1, §1.1–§1.7: checks of the printed formulas (``[[formula]]`` entries of ``textbook/``).
+
+Each function takes the entry's ``inputs`` and returns ``{"printed_equals_derived": bool}``
+from a real sympy derivation (plus, where the formula is a library function, a numeric
+comparison with that function). The printed forms are transcribed from the seed as they stand;
+a check that the printed form disagrees with the derivation marks an erratum.
+
+Rotations: the identities of §1.4 and §1.7 hold for every orthogonal A. They are checked with
+A = Q(a, b, c, d)/m, the quaternion matrix (1.3.7) divided by its scale: a rational
+parametrisation of all rotations, so ``sympy.cancel`` decides the identities exactly.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from .. import camera, single_image
+from ..derivations import X, Xs, Y, Ys, Z, Zs, f, rotation_matrix_symbolic, x, x0, y, y0
+
+_qa, _qb, _qc, _qd = sp.symbols("q_a q_b q_c q_d", real=True)
+f0, H, alpha0 = sp.symbols("f0 H alpha_0", positive=True)
+xh, yh = sp.symbols("x^0 y^0", real=True)
+
+
+def _quaternion_A():
+    """(1.3.7) divided by m = a² + b² + c² + d²: an orthogonal matrix for any non-zero (a, b, c, d)."""
+    a, b, c, d = _qa, _qb, _qc, _qd
+    Q = sp.Matrix([
+        [d**2 + a**2 - b**2 - c**2, 2 * (a * b - c * d), 2 * (a * c + b * d)],
+        [2 * (a * b + c * d), d**2 - a**2 + b**2 - c**2, 2 * (b * c - a * d)],
+        [2 * (a * c - b * d), 2 * (b * c + a * d), d**2 - a**2 - b**2 + c**2],
+    ])
+    return Q, a**2 + b**2 + c**2 + d**2
+
+
+def _is_zero(expr) -> bool:
+    return sp.cancel(sp.together(expr)) == 0
+
+
+# --- §1.1 ----------------------------------------------------------------------------------------
+def on_f_tan_tilt(inputs: dict) -> dict:
+    """on = f·tg α₀ (§1.1, line 81): derive the nadir point of a camera tilted by α₀ with (1.4.12).
+
+    The camera is tilted about its y axis (A = A_α(α₀)); the plumb line through S meets the
+    ground at N = S − (0, 0, H). Its image n = (x_n, y_n) by (1.4.12) lies at |on| from o.
+    The numeric part compares with :func:`photolib.single_image.principal_to_nadir_distance`.
+    """
+    A = rotation_matrix_symbolic("kaw", 0, alpha0, 0)
+    star = A.T * sp.Matrix([0, 0, -H])
+    xn, yn = -f * star[0] / star[2], -f * star[1] / star[2]
+    printed = f * sp.tan(alpha0)
+    symbolic = sp.simplify(xn - printed) == 0 and yn == 0
+    numeric = np.isclose(float(single_image.principal_to_nadir_distance(inputs["f_mm"], np.radians(inputs["tilt_deg"]))),
+                         float((xn.subs({f: inputs["f_mm"], alpha0: sp.rad(inputs["tilt_deg"]), H: 1000}))), rtol=1e-12)
+    return {"printed_equals_derived": bool(symbolic and numeric)}
+
+
+# --- §1.2 ----------------------------------------------------------------------------------------
+def ray_vector(inputs: dict) -> dict:
+    """(1.2.1)/(1.2.3): r = (x, y, 0) − (x₀, y₀, f) = (x − x₀, y − y₀, −f); with distortion the
+    measured point is first corrected to (x + d_x, y + d_y, 0).
+
+    The printed right-hand side is compared with the difference of the two points (sympy), and
+    :func:`photolib.camera.image_vector` with the printed form at random points (numpy).
+    """
+    dx, dy = sp.symbols("d_x d_y", real=True)
+    with_distortion = bool(inputs.get("distortion", False))
+    m = sp.Matrix([x + dx, y + dy, 0]) if with_distortion else sp.Matrix([x, y, 0])
+    S = sp.Matrix([x0, y0, f])
+    printed = (sp.Matrix([x - x0 + dx, y - y0 + dy, -f]) if with_distortion
+               else sp.Matrix([x - x0, y - y0, -f]))
+    symbolic = sp.simplify(m - S - printed) == sp.zeros(3, 1)
+    rng = np.random.default_rng(0)
+    coeffs = dict(k1=2e-5, k2=-1e-9, p1=1e-6, p2=-2e-6) if with_distortion else {}
+    io = camera.InteriorOrientation(100.0, 0.2, -0.3, **coeffs)
+    pts = rng.uniform(-40, 40, (10, 2))
+    d = camera.distortion_correction(pts, io) if with_distortion else np.zeros_like(pts)
+    fn = sp.lambdify((x, y, x0, y0, f, dx, dy), list(printed))
+    expected = np.column_stack(np.broadcast_arrays(*fn(pts[:, 0], pts[:, 1], io.x0, io.y0, io.f, d[:, 0], d[:, 1])))
+    numeric = np.allclose(camera.image_vector(pts, io, distortion=with_distortion), expected, atol=1e-12)
+    return {"printed_equals_derived": bool(symbolic and numeric)}
+
+
+# --- §1.4 ----------------------------------------------------------------------------------------
+def _collinearity_printed(A):
+    """(1.4.12) as printed: x, y from object coordinates."""
+    dX, dY, dZ = X - Xs, Y - Ys, Z - Zs
+    den = A[0, 2] * dX + A[1, 2] * dY + A[2, 2] * dZ
+    return (x0 - f * (A[0, 0] * dX + A[1, 0] * dY + A[2, 0] * dZ) / den,
+            y0 - f * (A[0, 1] * dX + A[1, 1] * dY + A[2, 1] * dZ) / den)
+
+
+def _monoplot_printed(A, xi, yi, Zp):
+    """(1.4.7) as printed: X, Y from image coordinates and the height Z."""
+    u, v = xi - x0, yi - y0
+    den = A[2, 0] * u + A[2, 1] * v - A[2, 2] * f
+    return (Xs + (Zp - Zs) * (A[0, 0] * u + A[0, 1] * v - A[0, 2] * f) / den,
+            Ys + (Zp - Zs) * (A[1, 0] * u + A[1, 1] * v - A[1, 2] * f) / den)
+
+
+def monoplot_collinearity_round_trip(inputs: dict) -> dict:
+    """(1.4.7) ∘ (1.4.12) = identity: project (X, Y, Z) by the printed (1.4.12), bring it back by
+    the printed (1.4.7) with the same Z, and get (X, Y) exactly (sympy, every rotation A = Q/m)."""
+    Q, m = _quaternion_A()
+    A = Q / m
+    xi, yi = _collinearity_printed(A)
+    Xb, Yb = _monoplot_printed(A, xi, yi, Z)
+    return {"printed_equals_derived": bool(_is_zero(Xb - X) and _is_zero(Yb - Y))}
+
+
+# --- §1.5 ----------------------------------------------------------------------------------------
+def horizontal_image_formulas(inputs: dict) -> dict:
+    """(1.5.3) and (1.5.5) from the printed (1.4.12) with A = E, x₀ = y₀ = 0 (and, for (1.5.5),
+    S at the origin and H = −Z); both printed members of (1.5.5) are compared."""
+    xi, yi = (e.subs({x0: 0, y0: 0}) for e in _collinearity_printed(sp.eye(3)))
+    eq = inputs["equation"]
+    if eq == "(1.5.3)":
+        printed = (-f / (Z - Zs) * (X - Xs), -f / (Z - Zs) * (Y - Ys))
+        ok = _is_zero(xi - printed[0]) and _is_zero(yi - printed[1])
+    elif eq == "(1.5.5)":
+        origin = {Xs: 0, Ys: 0, Zs: 0}
+        xi, yi = xi.subs(origin), yi.subs(origin)
+        first = (-f / Z * X, -f / Z * Y)
+        second = (f / H * X, f / H * Y)
+        ok = (_is_zero(xi - first[0]) and _is_zero(yi - first[1])
+              and _is_zero(xi.subs(Z, -H) - second[0]) and _is_zero(yi.subs(Z, -H) - second[1]))
+    else:
+        raise KeyError(eq)
+    return {"printed_equals_derived": bool(ok)}
+
+
+def horizontal_image_scale(inputs: dict) -> dict:
+    """Scale of a horizontal image of flat terrain (line 446). The scale 1/m is the ratio of an
+    image length to the ground length: by (1.5.5) it is ∂x/∂X = f/H (dimensionless). The printed
+    right-hand side ``inputs["printed"]`` ("1/H" as printed, "f/H" for the correction) is compared
+    with it symbolically and, for the RC30-like numbers in ``inputs``, with
+    :func:`photolib.single_image.horizontal_image_scale`."""
+    xi = _collinearity_printed(sp.eye(3))[0].subs({x0: 0, y0: 0, Xs: 0, Ys: 0, Zs: 0, Z: -H})
+    derived = sp.diff(xi, X)
+    printed = {"1/H": 1 / H, "f/H": f / H}[inputs["printed"]]
+    symbolic = _is_zero(derived - printed)
+    f_m, H_m = inputs["f_mm"] / 1000.0, inputs["H_m"]             # both lengths in metres
+    numeric = np.isclose(float(printed.subs({f: f_m, H: H_m})), 1.0 / single_image.horizontal_image_scale(
+        inputs["f_mm"], H_m), rtol=1e-12)
+    return {"printed_equals_derived": bool(symbolic and numeric)}
+
+
+# --- §1.6 ----------------------------------------------------------------------------------------
+def height_error_magnitude(inputs: dict) -> dict:
+    """(1.6.1): ΔX = x·ΔZ/f, ΔY = y·ΔZ/f are the magnitudes of the change of (1.5.4)
+    X = −Z·x/f, Y = −Z·y/f when Z changes by ΔZ (exact: (1.5.4) is linear in Z)."""
+    dZ = sp.symbols("Delta_Z", real=True)
+    X154, Y154 = -Z / f * x, -Z / f * y
+    dX = X154.subs(Z, Z + dZ) - X154
+    dY = Y154.subs(Z, Z + dZ) - Y154
+    printed_dX, printed_dY = x / f * dZ, y / f * dZ
+    ok = (sp.simplify(sp.Abs(dX) - sp.Abs(printed_dX)) == 0 and sp.simplify(sp.Abs(dY) - sp.Abs(printed_dY)) == 0
+          and sp.simplify(dX + printed_dX) == 0)         # the sign: a point raised by ΔZ moves towards the nadir
+    xs, ys = np.array([30.0, -12.0]), np.array([25.0, 7.5])
+    _, _, dR = single_image.planimetric_error_from_height_error(xs, ys, 50.0, 10.0)
+    ok = ok and np.allclose(dR, np.hypot(xs / 50.0 * 10.0, ys / 50.0 * 10.0), rtol=1e-14)
+    return {"printed_equals_derived": bool(ok)}
+
+
+# --- §1.7 ----------------------------------------------------------------------------------------
+def rectification_round_trip(inputs: dict) -> dict:
+    """(1.7.5) and (1.7.10) as printed are mutually inverse for every rotation A = Q/m (sympy):
+    tilted → horizontal → tilted returns (x, y), horizontal → tilted → horizontal (x⁰, y⁰)."""
+    Q, m = _quaternion_A()
+    A = Q / m
+
+    def to_horizontal(xi, yi):                                        # (1.7.5)
+        u, v = xi - x0, yi - y0
+        den = A[2, 0] * u + A[2, 1] * v - A[2, 2] * f
+        return (-f0 * (A[0, 0] * u + A[0, 1] * v - A[0, 2] * f) / den,
+                -f0 * (A[1, 0] * u + A[1, 1] * v - A[1, 2] * f) / den)
+
+    def to_tilted(xo, yo):                                            # (1.7.10)
+        den = A[0, 2] * xo + A[1, 2] * yo - A[2, 2] * f0
+        return (x0 - f * (A[0, 0] * xo + A[1, 0] * yo - A[2, 0] * f0) / den,
+                y0 - f * (A[0, 1] * xo + A[1, 1] * yo - A[2, 1] * f0) / den)
+
+    xb, yb = to_tilted(*to_horizontal(x, y))
+    xo, yo = to_horizontal(*to_tilted(xh, yh))
+    ok = _is_zero(xb - x) and _is_zero(yb - y) and _is_zero(xo - xh) and _is_zero(yo - yh)
+    return {"printed_equals_derived": bool(ok)}
+
+
+# --- §1.3 statements checked here (not examples) ----------------------------------------------------
+def rotation_singularity(inputs: dict) -> dict:
+    """Line 272: at α = 90° or 270° cos α = 0, so a₃₃ and a₁₁ vanish and (1.3.3)/(1.3.6) leave ω
+    and κ undetermined: both arctangents become 0/0 for either sequence (sympy)."""
+    w, k = sp.symbols("omega kappa", real=True)
+    ok = True
+    for a in (sp.pi / 2, 3 * sp.pi / 2):
+        kaw = rotation_matrix_symbolic("kaw", w, a, k)
+        wak = rotation_matrix_symbolic("wak", w, a, k)
+        ok = ok and all(sp.simplify(e) == 0 for e in (kaw[0, 0], kaw[2, 2], kaw[1, 0], kaw[2, 1],   # (1.3.6)
+                                                       wak[0, 0], wak[2, 2], wak[0, 1], wak[1, 2]))  # (1.3.3)
+    # and only there: at a generic α the denominators are cos α·cos κ, cos α·cos ω
+    a = sp.symbols("alpha", real=True)
+    kaw = rotation_matrix_symbolic("kaw", w, a, k)
+    ok = ok and sp.simplify(kaw[2, 2] - sp.cos(a) * sp.cos(w)) == 0 and sp.simplify(kaw[0, 0] - sp.cos(a) * sp.cos(k)) == 0
+    return {"printed_equals_derived": bool(ok)}
