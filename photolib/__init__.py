@@ -9,8 +9,11 @@ Modules mirror the book's chapters:
 * :mod:`photolib.digital` — pixel coordinates and resampling (§1.10)
 * :mod:`photolib.interior` — interior orientation from fiducial marks (§1.11)
 * :mod:`photolib.scanners` — photogrammetric scanners, Table 1.1 (§1.12)
+* :mod:`photolib.image_pair` — image pair: intersection, relative and absolute orientation (Chapter 2)
+* :mod:`photolib.bundle`, :mod:`photolib.synthetic` — bundle adjustment (§3.5) and synthetic aerial blocks
 * :mod:`photolib.conventions` — conversions to Western, Hanzl's and OpenCV's conventions
-* :mod:`photolib.lsq` — the one least-squares engine, (1.8.5)–(1.8.10)
+* :mod:`photolib.errata` — the errata list generated from ``textbook/``
+* :mod:`photolib.lsq` — the one least-squares engine, (1.8.5)–(1.8.10), with the block reduction of §3.5
 * :mod:`photolib.derivations` — sympy models and the Jacobians derived from them
 * :mod:`photolib.textbook`, :mod:`photolib.verify` — the book's published numbers and their check
 """

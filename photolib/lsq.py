@@ -417,7 +417,7 @@ def _pairs_by_point(point, n_points):
 def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
                                  frame_prior=None, point_prior=None, free_frames=None, free_points=None,
                                  covariance: bool = False, rcond: float = 1e-12,
-                                 dense_limit: int = 1200) -> BlockSolution:
+                                 dense_limit: int = 0) -> BlockSolution:
     """One linear step of a block adjustment by the reduction (3.5.13)–(3.5.16).
 
     Builds N₁₁ (6×6 blocks), N₂₂ (3×3 blocks) and the sparse N₁₂ from the correction equations,
@@ -444,7 +444,8 @@ def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_
         Smallest acceptable pivot of the scaled reduced matrix; below it the block is declared
         singular (datum defect) with :class:`DegenerateGeometryError`.
     dense_limit : int
-        Reduced systems up to this size are factorised densely.
+        Reduced systems up to this size are factorised densely (default 0: always sparse; the
+        dense path was much slower in the benchmark once BLAS threads compete for the cores).
     """
     import time
     from scipy import sparse
@@ -551,7 +552,7 @@ class BlockAdjustment:
 def block_gauss_newton(linearize, frames0, points0, *, frame_observations=None, point_observations=None,
                        free_frames=None, free_points=None, tol_frames=1e-8, tol_points=1e-6,
                        max_iter: int = 30, covariance: bool = False, rcond: float = 1e-12,
-                       dense_limit: int = 1200, progress=None) -> BlockAdjustment:
+                       dense_limit: int = 0, progress=None) -> BlockAdjustment:
     """Gauss–Newton iterations of a block adjustment solved by the reduction (3.5.16).
 
     The same algorithm as :func:`gauss_newton` (δ = −N⁻¹Lᴺ (3.5.9), iterate until the corrections
