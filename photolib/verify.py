@@ -97,7 +97,9 @@ def check_example(example: Example) -> list[Row]:
             ok = (not same) and right
             if q.as_printed:
                 ok = ok and matches_printed(printed_run, q.value, q.decimals)
-            detail = f"correct {q.correct}"
+            shown = q.correct_decimals if q.correct_decimals is not None else q.decimals
+            detail = f"correct {q.correct:.{shown}f}" if _is_number(q.correct) and shown is not None \
+                else f"correct {q.correct}"
         elif q.status == "not-reproducible":
             ok = not same
         else:  # transcribed
