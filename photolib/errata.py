@@ -49,7 +49,8 @@ class Record:
 
 
 def _section_key(section: str):
-    return tuple(int(p) if p.isdigit() else p for p in str(section).split("."))
+    """Sort key for "1.10" after "1.9"; non-numeric parts sort after numbers, without type errors."""
+    return tuple((0, int(p), "") if p.isdigit() else (1, 0, p) for p in str(section).split("."))
 
 
 def _value_text(q) -> str:

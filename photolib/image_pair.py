@@ -363,7 +363,8 @@ def _check_spread(xy, what):
 
 def relative_orientation(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
                          system: str = "dependent", order: str = DEFAULT_ORDER, initial=None,
-                         weights=None, tol: float = 1e-12, max_iter: int = 50) -> RelativeOrientation:
+                         weights=None, tol: float = 1e-12, max_iter: int = 50,
+                         jacobian: str = "derived") -> RelativeOrientation:
     """Relative orientation of a pair by the coplanarity condition, §2.7–§2.8.
 
     Each pair of corresponding points gives one condition φ = 0 (2.7.3); linearised, it is the
@@ -387,6 +388,12 @@ def relative_orientation(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrient
         Approximate values of the elements (zeros, as in the book, by default).
     weights : array (n,), optional
         Weights of the conditions; unit weights (the book) by default.
+    jacobian : {"derived", "printed"}
+        ``"derived"`` (default): a₁…a₅ derived by sympy. ``"printed"``: the book's §2.8
+        partials (:func:`photolib.derivations.printed_coplanarity_partials`; κ–α–ω only), which
+        equal ∂A/∂θ·(x, y, **+f**): a sign error on every f-term. The iteration still converges
+        (slowly, to nearly the same elements) but m_j and r_ij are wrong — this mode exists only
+        to reproduce the published accuracy of the worked example that closes §2.12.
 
     Returns
     -------
@@ -410,6 +417,12 @@ def relative_orientation(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrient
     r1, r2 = image_vector(xy1, io1), image_vector(xy2, io2)
     data = (r1[:, 0], r1[:, 1], io1.f, r2[:, 0], r2[:, 1], io2.f)
     res_fn, jac_fn = derivations.coplanarity_model(system, order).compile()
+    if jacobian == "printed":
+        if order != "kaw":
+            raise InputError("the printed §2.8 partials are for the κ–α–ω matrix (1.3.5): use order='kaw'")
+        jac_fn = derivations.printed_coplanarity_jacobian(system)
+    elif jacobian != "derived":
+        raise InputError(f"jacobian must be 'derived' or 'printed', got {jacobian!r}")
 
     def linearize(p):
         return jac_fn(*p, *data).T, res_fn(*p, *data)[0]        # (2.8.1): B rows a1..a5, L = φ
@@ -542,8 +555,12 @@ def similarity_closed_form(model_points, object_points, order: str = DEFAULT_ORD
     return SimilarityTransform.from_matrix(mO - t * A @ mM, A, t, order)
 
 
-def _planimetric_start(XM, XYZ, mask, order):
-    """Start for a near-vertical model from ≥ 2 planimetric and the height points: ω = α = 0."""
+def level_similarity_start(XM, XYZ, mask, order):
+    """Start values of the 7-element transform (2.10.4) for a near-vertical model: ω = α = 0.
+
+    Scale, κ and the shifts come from a 2-D similarity fitted to ≥ 2 planimetric control points,
+    Z₀ from the height points. Used when there are not 3 non-collinear full control points.
+    """
     xy = mask[:, 0] & mask[:, 1]
     zm = XM[xy, 0] + 1j * XM[xy, 1]
     zo = XYZ[xy, 0] + 1j * XYZ[xy, 1]
@@ -560,7 +577,7 @@ def _planimetric_start(XM, XYZ, mask, order):
 
 def absolute_orientation(model_points, control_points, components=None, order: str = DEFAULT_ORDER,
                          initial: SimilarityTransform | None = None, weights=None, tol: float = 1e-10,
-                         max_iter: int = 50) -> SimilarityTransform:
+                         max_iter: int = 50, jacobian: str = "derived") -> SimilarityTransform:
     """Exterior orientation of a model from control points, §2.11, by least squares.
 
     Every used coordinate of a control point gives one equation of (2.11.1); linearised they are
@@ -583,6 +600,12 @@ def absolute_orientation(model_points, control_points, components=None, order: s
         the planimetric and height points.
     weights : (n, 3) array, optional
         Weights of the coordinates (unused entries ignored); unit weights by default.
+    jacobian : {"derived", "printed", "book-program"}
+        ``"derived"`` (default): coefficients of (2.11.2) derived by sympy. ``"printed"``: the
+        §2.11 coefficients as printed (ω–α–κ only; ∂φ/∂α_M has the wrong sign on both sin κ_M
+        terms). ``"book-program"``: the printed ones with a₅ = ∂φ_X/∂α_M set to 0, which is what
+        the book's program evidently computed in the worked example after §2.12 (it reproduces X₀, m_X₀
+        and the X₀ row of its correlation matrix). The last two exist only to reproduce the book.
 
     Returns
     -------
@@ -616,13 +639,19 @@ def absolute_orientation(model_points, control_points, components=None, order: s
             if (mask[:, 0].sum() < 2) or (mask[:, 2].sum() < 1):
                 raise DegenerateGeometryError(
                     "control: no 3 non-collinear full points and not 2 planimetric + height points") from None
-            start = _planimetric_start(XM, obs, mask, order)
+            start = level_similarity_start(XM, obs, mask, order)
     else:
         start = initial
     if weights is not None and np.shape(weights) != XM.shape:
         raise InputError(f"weights: expected shape {XM.shape}, got {np.shape(weights)}")
     P = None if weights is None else np.asarray(weights, dtype=float)[mask]
     res_fn, jac_fn = derivations.similarity_model(order).compile()
+    if jacobian in ("printed", "book-program"):
+        if order != "wak":
+            raise InputError("the printed §2.11 partials are for the ω–α–κ matrix (1.3.2): use order='wak'")
+        jac_fn = derivations.printed_similarity_jacobian(zero_a5=jacobian == "book-program")
+    elif jacobian != "derived":
+        raise InputError(f"jacobian must be 'derived', 'printed' or 'book-program', got {jacobian!r}")
     data = (XM[:, 0], XM[:, 1], XM[:, 2], obs[:, 0], obs[:, 1], obs[:, 2])
     n = len(XM)
 
@@ -641,20 +670,27 @@ def absolute_orientation(model_points, control_points, components=None, order: s
 
 
 # --- §2.12 exterior orientation of the images -------------------------------------------------------------
-def image_orientation_from_model(model: StereoModel, transform: SimilarityTransform, order: str | None = None):
+def image_orientation_from_model(model: StereoModel, transform: SimilarityTransform, order: str | None = None,
+                                 product: str = "model-first"):
     """Exterior orientation of both images from the model's (§2.12).
 
     S_i = R₀ + t·A_M·S_Mi (2.12.1) and A_i = A_M·A'_i (2.12.2); the angles are extracted in
-    ``order`` (default: the transform's; the book uses (1.3.3), i.e. ``"wak"``). The chain works
-    on matrices, so the model's and the images' rotation sequences need not agree.
+    ``order`` (default: the transform's; the book's text uses (1.3.3), i.e. ``"wak"``). The chain
+    works on matrices, so the model's and the images' rotation sequences need not agree.
+    ``product="image-first"`` computes A_i = A'_i·A_M instead — wrong (A'_i maps image → model
+    and A_M model → object, so A_M must be applied last), but it is what the book's program
+    evidently did in the worked example after §2.12; it exists only to reproduce that table.
     Returns (eo1, eo2).
     """
     order = transform.order if order is None else check_order(order)
+    if product not in ("model-first", "image-first"):
+        raise InputError(f"product must be 'model-first' (2.12.2) or 'image-first', got {product!r}")
     A_M = transform.matrix
     result = []
     for eo in (model.eo1, model.eo2):
         S = transform.shift + transform.t * A_M @ eo.center                      # (2.12.1)
-        result.append(ExteriorOrientation.from_matrix(S, A_M @ eo.matrix, order))  # (2.12.2)
+        A = A_M @ eo.matrix if product == "model-first" else eo.matrix @ A_M      # (2.12.2)
+        result.append(ExteriorOrientation.from_matrix(S, A, order))
     return tuple(result)
 
 
@@ -674,11 +710,15 @@ def normal_case_accuracy(H, f, b, m_x, m_y, m_p, x=0.0, y=0.0, approximate: bool
     (mm); the result is in the unit of H. ``approximate=True`` drops the x, y terms as the
     book's numerical example does.
     """
-    if f <= 0 or b <= 0 or H <= 0:
-        raise InputError("H, f and b must be positive")
+    H, f, b = (np.asarray(v, dtype=float) for v in (H, f, b))
+    if np.any(f <= 0) or np.any(b <= 0) or np.any(H <= 0) or not np.all(np.isfinite([*np.ravel(H), *np.ravel(f), *np.ravel(b)])):
+        raise InputError("H, f and b must be positive and finite")
     m_Z = H / b * m_p                                                            # (2.13.3)
     if approximate:
-        return H / f * m_x, H / f * m_y, m_Z
-    m_X = np.hypot(np.asarray(x) / f * m_Z, H / f * m_x)
-    m_Y = np.hypot(np.asarray(y) / f * m_Z, H / f * m_y)
+        m_X, m_Y = H / f * m_x, H / f * m_y
+    else:
+        m_X = np.hypot(np.asarray(x) / f * m_Z, H / f * m_x)
+        m_Y = np.hypot(np.asarray(y) / f * m_Z, H / f * m_y)
+    if np.ndim(m_X) == np.ndim(m_Y) == np.ndim(m_Z) == 0:
+        return float(m_X), float(m_Y), float(m_Z)
     return m_X, m_Y, m_Z

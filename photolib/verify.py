@@ -60,6 +60,8 @@ def _format(value, decimals) -> str:
     if _is_number(value):
         if decimals is None:
             return f"{value:g}"
+        if decimals == 0 and abs(value - round(value)) < 1e-9:
+            return str(int(round(value)))
         shown = max(decimals + 2, 0)
         return f"{round(value, shown) + 0.0:.{shown}f}"
     return str(value)
