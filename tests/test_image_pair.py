@@ -403,3 +403,20 @@ def test_normal_case_accuracy_matches_monte_carlo_of_2_5_3():
     assert m_Z == pytest.approx(H / b * mp)
     assert m_X >= H / f * mx
     assert ip.photo_base(56.9, 60) == pytest.approx(22.76)
+
+
+def test_non_convergence_is_reported_clearly():
+    """Too few iterations, or the slowly converging as-printed Jacobian, raise ConvergenceError with a history."""
+    from photolib.errors import ConvergenceError
+    eo1, eo2, XYZ, xy1, xy2 = make_pair(3)
+    xy2 = xy2 + np.random.default_rng(3).normal(0, 0.005, xy2.shape)
+    io = InteriorOrientation(100.0)
+    with pytest.raises(ConvergenceError) as info:
+        ip.relative_orientation(xy1, xy2, io, max_iter=2)
+    assert len(info.value.history) == 2
+    with pytest.raises(ConvergenceError):
+        ip.relative_orientation(xy1, xy2, io, system="independent", jacobian="printed", max_iter=6)
+    model = ip.build_model(xy1, xy2, ip.relative_orientation(xy1, xy2, io), io, base_length=400.0)
+    far = ip.SimilarityTransform(0.0, 0.0, 0.0, 0.3, -0.2, 1.0, 1.0)     # a poor start instead of the closed form
+    with pytest.raises(ConvergenceError):
+        ip.absolute_orientation(model.points, XYZ, initial=far, max_iter=3)
