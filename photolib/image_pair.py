@@ -694,6 +694,56 @@ def image_orientation_from_model(model: StereoModel, transform: SimilarityTransf
     return tuple(result)
 
 
+# --- §2.6 the whole double-resection workflow ----------------------------------------------------------------
+@dataclass
+class DoubleResection:
+    """Every intermediate result of the double resection of §2.6 (steps 2–5; step 1, interior
+    orientation, is done by the caller, e.g. with :mod:`photolib.interior`)."""
+
+    relative: RelativeOrientation          # step 2: the five elements of relative orientation (§2.7–§2.8)
+    model: StereoModel                     # step 3: the model by intersection in the model frame (§2.9)
+    transform: SimilarityTransform         # step 4: the seven elements of the model's exterior orientation (§2.11)
+    object_points: np.ndarray              # step 5: all points in the object system (2.10.4)
+    eo1: ExteriorOrientation               # and the images' exterior orientation (§2.12)
+    eo2: ExteriorOrientation
+
+    @property
+    def control_residuals(self) -> np.ndarray:
+        """Transformed model − given object coordinates at the control points (NaN where not given)."""
+        return self.transform.residuals
+
+
+def double_resection(xy1, xy2, io1: InteriorOrientation, control_points, io2: InteriorOrientation | None = None,
+                     *, components=None, system: str = "dependent", order: str = DEFAULT_ORDER,
+                     base_length: float = 1.0, ro_weights=None, control_weights=None) -> DoubleResection:
+    """Object coordinates from a stereo pair by double resection, §2.6, in one call.
+
+    Chains relative orientation (:func:`relative_orientation`), model construction
+    (:func:`build_model`), exterior orientation of the model from control points
+    (:func:`absolute_orientation`), the transformation of every model point into the object
+    system (2.10.4) and the exterior orientation of both images (:func:`image_orientation_from_model`).
+
+    ``control_points`` is an (n, 3) array aligned with the image points, NaN for points that are
+    not control (or for the unknown components of planimetric or height control; ``components``
+    may give the mask explicitly). At least five points for step 2 and control enough for the
+    seven elements of step 4 (three non-collinear full points, or the §2.11 alternatives).
+    """
+    control = np.asarray(control_points, dtype=float)
+    xy1 = as_points(xy1, 2, "image points of image 1")
+    if control.shape != (len(xy1), 3):
+        raise InputError(f"control_points must have shape ({len(xy1)}, 3) aligned with the image points, got {control.shape}")
+    mask = np.isfinite(control) if components is None else np.asarray(components, dtype=bool)
+    rows = mask.any(axis=1)
+    if not rows.any():
+        raise InputError("no control point is given: the model cannot be oriented (§2.11)")
+    ro = relative_orientation(xy1, xy2, io1, io2, system=system, order=order, weights=ro_weights)
+    model = build_model(xy1, xy2, ro, io1, io2, base_length=base_length)
+    transform = absolute_orientation(model.points[rows], np.where(mask[rows], control[rows], 0.0),
+                                     components=mask[rows], order=order, weights=control_weights)
+    eo1, eo2 = image_orientation_from_model(model, transform, order)
+    return DoubleResection(ro, model, transform, transform.apply(model.points), eo1, eo2)
+
+
 # --- §2.13 a-priori accuracy -------------------------------------------------------------------------------
 def photo_base(frame_length, overlap_percent):
     """Photo base at image scale b = l_x(100% − P_x)/100% (§2.13), l_x the frame side along the flight."""

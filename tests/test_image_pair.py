@@ -420,3 +420,31 @@ def test_non_convergence_is_reported_clearly():
     far = ip.SimilarityTransform(0.0, 0.0, 0.0, 0.3, -0.2, 1.0, 1.0)     # a poor start instead of the closed form
     with pytest.raises(ConvergenceError):
         ip.absolute_orientation(model.points, XYZ, initial=far, max_iter=3)
+
+
+@pytest.mark.parametrize("system", ["dependent", "independent"])
+def test_double_resection_in_one_call_recovers_points_and_orientation(system):
+    """§2.6: RO → model → model EO from 4 control points → all points and both images' EO, noise-free."""
+    eo1, eo2, XYZ, xy1, xy2 = make_pair(5)
+    control = np.full_like(XYZ, np.nan)
+    control[[0, 5, 10, 15]] = XYZ[[0, 5, 10, 15]]
+    result = ip.double_resection(xy1, xy2, IO, control, system=system, base_length=0.04)
+    np.testing.assert_allclose(result.object_points, XYZ, atol=1e-6)
+    for got, truth in ((result.eo1, eo1), (result.eo2, eo2)):
+        np.testing.assert_allclose(got.center, truth.center, atol=1e-6)
+        np.testing.assert_allclose(got.matrix, truth.matrix, atol=1e-10)
+    assert result.relative.system == system and result.model.points.shape == XYZ.shape
+    assert np.nanmax(np.abs(result.control_residuals)) < 1e-6
+
+
+def test_double_resection_with_height_control_and_bad_input():
+    eo1, eo2, XYZ, xy1, xy2 = make_pair(6)
+    control = np.full_like(XYZ, np.nan)
+    control[[0, 7]] = XYZ[[0, 7]]            # two full points
+    control[12, 2] = XYZ[12, 2]              # and one height point (§2.11 minimal configuration)
+    result = ip.double_resection(xy1, xy2, IO, control)
+    np.testing.assert_allclose(result.object_points, XYZ, atol=1e-5)
+    with pytest.raises(InputError, match="no control point"):
+        ip.double_resection(xy1, xy2, IO, np.full_like(XYZ, np.nan))
+    with pytest.raises(InputError, match="aligned"):
+        ip.double_resection(xy1, xy2, IO, XYZ[:3])
