@@ -1,0 +1,886 @@
+"""Projective transformations in photogrammetry — Chapter 4, §4.1–§4.4.
+
+* §4.1 the homogeneous camera and the direct linear transformation (DLT):
+  :func:`calibration_matrix` (K of (4.1.2)), :func:`projection_matrix` ((4.1.1)/(4.1.2) in a
+  form consistent with Chapter 1), :func:`dlt_from_projection`, :func:`projection_from_dlt`,
+  :func:`dlt_from_orientation`, :func:`dlt_project` (4.1.7), :func:`orientation_from_dlt`
+  ((4.2.4)–(4.2.6) and (1.3.6)).
+* §4.2 projective space resection: :func:`dlt_resection` — L₁…L₁₁ from ≥ 6 non-coplanar
+  control points by linear least squares (4.2.1)–(4.2.3), as printed or with Hartley's
+  normalisation, with μ and m_L from :mod:`photolib.lsq`.
+* §4.3 projective forward intersection: :func:`dlt_intersection` (4.3.1), any number of images.
+* §4.4 relative orientation through the fundamental and essential matrices:
+  :func:`skew_matrix` (4.4.4), :func:`fundamental_matrix` (4.4.13)/(4.4.14),
+  :func:`essential_matrix` (4.4.15)/(4.4.16), :func:`fundamental_from_orientation`,
+  :func:`essential_from_orientation` (a corrected (4.4.10)), :func:`epipolar_lines`,
+  :func:`epipolar_residuals`, :func:`sampson_distance`, :func:`decompose_essential` (rotation,
+  base direction and the elements b_y, b_z, ω′₂, α′₂, κ′₂ of the system (2.7.5)),
+  :func:`relative_orientation_projective` (both steps), :func:`essential_from_fundamental`,
+  :func:`ransac_fundamental`.
+* Plane-to-plane homography (8 parameters, cf. (1.7.5) and Hanzl's projective transformation):
+  :func:`homography_dlt` (normalised linear) and :func:`homography_lsq` (iterated least squares
+  with the sympy Jacobian of :func:`photolib.derivations.homography_model`), :func:`apply_homography`.
+
+Conventions (see the chapter's notes for the proofs)
+-----------------------------------------------------
+Chapter 1 writes the image ray as r = (x − x₀, y − y₀, −f) with A mapping camera → object axes,
+so a point in front of the camera has Z* < 0, Z* the third component of Aᵀ(X − S). The book's
+homogeneous form (4.1.2), K·[A | R_S], is only valid if its "A" is read as an object → camera
+rotation whose z axis points *towards* the object and R_S as a translation. In Chapter-1 terms::
+
+    P = K · D · Aᵀ · [E | −S],   K = [[f_x, 0, x₀], [0, f_y, y₀], [0, 0, 1]],   D = diag(1, 1, −1)
+
+(the same camera as (1.4.12) when f_x = f_y = f). Dividing P by P₃₄ gives L₁…L₁₁ of (4.1.7);
+P₃₄ = a₁₃X_S + a₂₃Y_S + a₃₃Z_S, not Z_S as the text says.
+
+Errata handled here (proved in ``tests/test_projective.py``):
+
+* (4.2.5) lacks a minus sign: S = −M⁻¹(L₄, L₈, 1)ᵀ, M the 3×3 of L₁…L₃, L₅…L₇, L₉…L₁₁
+  (``printed=True`` gives the printed, negated centre — the book's example table shows it).
+* (4.2.6): the third row repeats the first; it must be a₃₁ = L(x₀L₁₁ − L₃)/f_x,
+  a₃₂ = L(y₀L₁₁ − L₇)/f_y.
+* The sign of L in (4.2.4) (−1/√(L₉² + L₁₀² + L₁₁²)) holds only when the object origin is in
+  front of the camera; we pick the sign that makes det A = +1.
+* (4.4.13)/(4.4.14) define F by r₁ᵀ F r₂ = 0, but the book's epipolar line l₂ = F r₁ and its
+  printed numeric F and E satisfy r₂ᵀ F r₁ = 0. This module returns F and E in the layout
+  ``"x2Fx1"`` (x₂ᵀ F x₁ = 0, l₂ = F x₁ — the book's numbers, Hartley & Zisserman, OpenCV);
+  ``layout="x1Fx2"`` gives the transpose, the matrix of the equations (4.4.13)/(4.4.14).
+* (4.4.10)/(4.4.16) write A₂⁻¹ where (4.4.7) gives A₂; the book's K⁻¹(x, y, 1) is the
+  Chapter-1 ray reflected by D. Consistently: E = D A₂ᵀ S_b A₁ D (x2Fx1 layout), F = K₂⁻ᵀ E K₁⁻¹.
+
+Units: image coordinates in mm, object coordinates in m, angles in radians.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .camera import ExteriorOrientation, InteriorOrientation, as_points
+from .errors import DegenerateGeometryError, InputError
+from .lsq import Adjustment, accuracy, gauss_newton, solve_normal_equations
+from .rotation import check_order, rotation_angles
+
+DLT_NAMES = tuple(f"L{i}" for i in range(1, 12))
+HOMOGRAPHY_NAMES = tuple(f"h{i}" for i in range(1, 9))
+LAYOUTS = ("x2Fx1", "x1Fx2")
+D_REFLECTION = np.diag([1.0, 1.0, -1.0])
+"""D = diag(1, 1, −1): the Chapter-1 camera frame (image at z = −f) ↔ the homogeneous frame of §4.1."""
+
+
+# --- helpers ------------------------------------------------------------------------------------
+def _check_layout(layout: str) -> str:
+    if layout not in LAYOUTS:
+        raise InputError(f"layout must be 'x2Fx1' (x₂ᵀFx₁ = 0, l₂ = Fx₁) or 'x1Fx2' (4.4.13), got {layout!r}")
+    return layout
+
+
+def _check_method(method: str, allowed=("normalized", "book")) -> str:
+    if method not in allowed:
+        raise InputError(f"method must be one of {allowed}, got {method!r}")
+    return method
+
+
+def _dlt_vector(L) -> np.ndarray:
+    L = np.asarray(L, dtype=float)
+    if L.shape != (11,):
+        raise InputError(f"DLT coefficients: expected 11 values L1…L11, got shape {L.shape}")
+    if not np.all(np.isfinite(L)):
+        raise InputError("DLT coefficients contain NaN or inf")
+    return L
+
+
+def _matrix3(M, what: str) -> np.ndarray:
+    M = np.asarray(M, dtype=float)
+    if M.shape != (3, 3) or not np.all(np.isfinite(M)):
+        raise InputError(f"{what} must be a finite 3×3 matrix, got shape {M.shape}")
+    return M
+
+
+def _homogeneous(points) -> np.ndarray:
+    return np.column_stack([points, np.ones(len(points))])
+
+
+def _pair(xy1, xy2, minimum: int, what: str):
+    xy1 = as_points(xy1, 2, f"{what}: image-1 coordinates")
+    xy2 = as_points(xy2, 2, f"{what}: image-2 coordinates")
+    if len(xy1) != len(xy2):
+        raise InputError(f"{what}: {len(xy1)} points on image 1 but {len(xy2)} on image 2")
+    if len(xy1) < minimum:
+        raise InputError(f"{what} needs at least {minimum} correspondences, got {len(xy1)}")
+    return xy1, xy2
+
+
+def normalizing_transform(points) -> np.ndarray:
+    """Hartley's conditioning: move the centroid to the origin, mean distance √dim.
+
+    Returns the (dim+1)×(dim+1) homogeneous matrix T with x̃ = T·x. Raises
+    :class:`DegenerateGeometryError` if all points coincide.
+    """
+    points = np.asarray(points, dtype=float)
+    dim = points.shape[1]
+    centroid = points.mean(axis=0)
+    spread = np.mean(np.linalg.norm(points - centroid, axis=1))
+    if not spread > 0:
+        raise DegenerateGeometryError("all points coincide; no projective transformation is determined")
+    s = np.sqrt(dim) / spread
+    T = np.eye(dim + 1)
+    T[:dim, :dim] *= s
+    T[:dim, dim] = -s * centroid
+    return T
+
+
+def _null_vector(M):
+    """Right singular vector of the smallest singular value and all singular values (padded)."""
+    _, s, Vt = np.linalg.svd(M, full_matrices=True)
+    s = np.concatenate([s, np.zeros(Vt.shape[0] - len(s))])
+    return Vt[-1], s
+
+
+def nearest_rotation(M) -> np.ndarray:
+    """The rotation matrix closest to M in the Frobenius norm (SVD, det = +1)."""
+    U, _, Vt = np.linalg.svd(_matrix3(M, "matrix"))
+    R = U @ Vt
+    if np.linalg.det(R) < 0:
+        R = U @ np.diag([1.0, 1.0, -1.0]) @ Vt
+    return R
+
+
+# --- §4.1 the homogeneous camera and the DLT ----------------------------------------------------------
+def calibration_matrix(io: InteriorOrientation, fx=None, fy=None, skew: float = 0.0) -> np.ndarray:
+    """K of (4.1.2): [[f_x, s, x₀], [0, f_y, y₀], [0, 0, 1]] (f_x = f_y = f unless given; the book has s = 0)."""
+    fx = io.f if fx is None else float(fx)
+    fy = io.f if fy is None else float(fy)
+    if not (np.isfinite(fx) and np.isfinite(fy) and fx > 0 and fy > 0 and np.isfinite(skew)):
+        raise InputError(f"f_x, f_y must be positive and finite and the skew finite, got {fx}, {fy}, {skew}")
+    return np.array([[fx, skew, io.x0], [0.0, fy, io.y0], [0.0, 0.0, 1.0]])
+
+
+def projection_matrix(io: InteriorOrientation, eo: ExteriorOrientation, fx=None, fy=None,
+                      skew: float = 0.0) -> np.ndarray:
+    """3×4 projection matrix P = K·D·Aᵀ·[E | −S] of (4.1.1)/(4.1.2) (corrected form, see module notes).
+
+    (x, y, 1)ᵀ ∝ P·(X, Y, Z, 1)ᵀ reproduces the collinearity equations (1.4.12) for f_x = f_y = f.
+    ``io`` distortion is ignored (the projective model has none).
+    """
+    K = calibration_matrix(io, fx, fy, skew)
+    R = D_REFLECTION @ eo.matrix.T
+    return K @ R @ np.column_stack([np.eye(3), -eo.center])
+
+
+def dlt_from_projection(P) -> np.ndarray:
+    """L₁…L₁₁ of (4.1.7): the projection matrix divided by its element P₃₄ (4.1.6) → (4.1.7)."""
+    P = np.asarray(P, dtype=float)
+    if P.shape != (3, 4) or not np.all(np.isfinite(P)):
+        raise InputError(f"a projection matrix must be a finite 3×4 array, got shape {P.shape}")
+    if abs(P[2, 3]) <= 1e-12 * np.abs(P[2, :3]).max():
+        raise DegenerateGeometryError(
+            "P₃₄ = 0: the object origin lies in the plane through the projection centre parallel to the "
+            "image, so (4.1.7) cannot be normalised; move the object origin")
+    return (P / P[2, 3]).ravel()[:11]
+
+
+def projection_from_dlt(L) -> np.ndarray:
+    """The 3×4 matrix [[L₁ L₂ L₃ L₄], [L₅ L₆ L₇ L₈], [L₉ L₁₀ L₁₁ 1]] of (4.1.7)."""
+    return np.append(_dlt_vector(L), 1.0).reshape(3, 4)
+
+
+def dlt_from_orientation(io: InteriorOrientation, eo: ExteriorOrientation, fx=None, fy=None,
+                         skew: float = 0.0) -> np.ndarray:
+    """L₁…L₁₁ of (4.1.7) for a camera given by its interior and exterior orientation."""
+    return dlt_from_projection(projection_matrix(io, eo, fx, fy, skew))
+
+
+def dlt_project(L, XYZ) -> np.ndarray:
+    """Object → image by the DLT (4.1.7): x = (L₁X + L₂Y + L₃Z + L₄)/(L₉X + L₁₀Y + L₁₁Z + 1), likewise y."""
+    P = projection_from_dlt(L)
+    XYZ = as_points(XYZ, 3, "object points")
+    h = _homogeneous(XYZ) @ P.T
+    if np.any(np.abs(h[:, 2]) < 1e-15):
+        raise DegenerateGeometryError("a point lies in the plane of the projection centre parallel to the image")
+    return h[:, :2] / h[:, 2:]
+
+
+@dataclass(frozen=True)
+class DLTOrientation:
+    """Interior and exterior orientation recovered from L₁…L₁₁, (4.2.4)–(4.2.6).
+
+    ``fx`` and ``fy`` are those of (4.2.4); with a non-zero ``skew`` s (the non-orthogonality
+    of the image axes the 11 coefficients can hold) the book's f_x equals √(f_x² + s²) of the
+    general camera K = [[f_x, s, x₀], [0, f_y, y₀], [0, 0, 1]]. ``A_printed`` is the matrix of
+    (4.2.6) (third row corrected); ``eo`` uses its nearest rotation ``A``.
+    """
+
+    x0: float
+    y0: float
+    fx: float
+    fy: float
+    skew: float
+    L: float                     # the factor L of (4.2.4) with the sign that gives det A > 0
+    center: np.ndarray           # (4.2.5) with the minus sign
+    A_printed: np.ndarray        # (4.2.6) with row 3 corrected, not exactly orthogonal for noisy data
+    A: np.ndarray                # nearest rotation to A_printed
+    eo: ExteriorOrientation
+
+    @property
+    def book_angles(self) -> np.ndarray:
+        """(ω, α, κ) read off ``A_printed`` literally by (1.3.6) (``"kaw"``) or (1.3.3) (``"wak"``).
+
+        This is what the book's example tabulates; ``eo`` instead takes the angles of the
+        nearest rotation, which differ by the non-orthogonality of ``A_printed`` (≈ 0.005°).
+        """
+        a = self.A_printed
+        if self.eo.order == "kaw":
+            return np.array([np.arctan2(a[2, 1], a[2, 2]), np.arcsin(-a[2, 0]), np.arctan2(a[1, 0], a[0, 0])])
+        return np.array([np.arctan2(-a[1, 2], a[2, 2]), np.arcsin(a[0, 2]), np.arctan2(-a[0, 1], a[0, 0])])
+
+    @property
+    def orthogonality_error(self) -> float:
+        """max |AᵀA − E| of the matrix (4.2.6) — how far the DLT camera is from a metric one."""
+        return float(np.abs(self.A_printed.T @ self.A_printed - np.eye(3)).max())
+
+
+def orientation_from_dlt(L, order: str = "kaw", printed: bool = False) -> DLTOrientation:
+    """x₀, y₀, f_x, f_y (4.2.4), the centre (4.2.5), A (4.2.6) and ω, α, κ by (1.3.6)/(1.3.3).
+
+    Parameters
+    ----------
+    L : (11,) array
+        L₁…L₁₁ of (4.1.7).
+    order : {"kaw", "wak"}
+        Rotation sequence of the returned angles; the book uses (1.3.6), i.e. ``"kaw"``.
+    printed : bool
+        If True the centre is computed by (4.2.5) exactly as printed, M⁻¹(L₄, L₈, 1)ᵀ, which
+        is the negative of the true centre (the book's example table prints these values);
+        the returned ``eo`` then carries that wrong centre too.
+    """
+    check_order(order)
+    L = _dlt_vector(L)
+    m1, m2, m3 = L[0:3], L[4:7], L[8:11]
+    n3 = np.linalg.norm(m3)
+    M = np.vstack([m1, m2, m3])
+    det = np.linalg.det(M)
+    if n3 == 0 or abs(det) <= 1e-12 * np.linalg.norm(m1) * np.linalg.norm(m2) * n3:
+        raise DegenerateGeometryError("the 3×3 part of the DLT matrix is singular: not a central projection")
+    Lf = -1.0 / n3                                                   # (4.2.4)
+    x0 = float(m1 @ m3) * Lf ** 2
+    y0 = float(m2 @ m3) * Lf ** 2
+    fx2 = float(m1 @ m1) * Lf ** 2 - x0 ** 2
+    fy2 = float(m2 @ m2) * Lf ** 2 - y0 ** 2
+    if fx2 <= 0 or fy2 <= 0:
+        raise DegenerateGeometryError("(4.2.4) gives f_x² ≤ 0 or f_y² ≤ 0: the coefficients are not a camera")
+    fx, fy = np.sqrt(fx2), np.sqrt(fy2)
+    skew = (float(m1 @ m2) * Lf ** 2 - x0 * y0) / fy
+
+    def a_matrix(Lf):                                                # (4.2.6), row 3 corrected
+        return Lf * np.column_stack([(x0 * m3 - m1) / fx, (y0 * m3 - m2) / fy, m3])
+
+    A_printed = a_matrix(Lf)
+    if np.linalg.det(A_printed) < 0:          # the object origin is behind the camera: L > 0
+        Lf = -Lf
+        A_printed = a_matrix(Lf)
+    center = np.linalg.solve(M, np.array([L[3], L[7], 1.0]))
+    if not printed:
+        center = -center                                              # (4.2.5) with the minus sign
+    A = nearest_rotation(A_printed)
+    w, a, k = rotation_angles(A, order)
+    eo = ExteriorOrientation(float(center[0]), float(center[1]), float(center[2]), w, a, k, order)
+    return DLTOrientation(x0, y0, float(fx), float(fy), float(skew), float(Lf), center, A_printed, A, eo)
+
+
+# --- §4.2 projective space resection -----------------------------------------------------------------
+@dataclass
+class DLTResection:
+    """Result of :func:`dlt_resection`: L₁…L₁₁ with the accuracy of the linear model (4.2.1).
+
+    ``residuals`` are v_x, v_y of (4.2.1) (algebraic, mm scaled by the DLT denominator);
+    ``image_residuals`` the reprojection errors DLT(X) − x in mm. μ, m_L and r_ij follow
+    (1.8.8)–(1.8.10) with Q = (BᵀPB)⁻¹ of (4.2.2).
+    """
+
+    L: np.ndarray
+    Q: np.ndarray
+    mu: float
+    std: np.ndarray
+    corr: np.ndarray
+    residuals: np.ndarray
+    image_residuals: np.ndarray
+    dof: int
+    method: str
+
+    def orientation(self, order: str = "kaw", printed: bool = False) -> DLTOrientation:
+        """Interior and exterior orientation by (4.2.4)–(4.2.6), see :func:`orientation_from_dlt`."""
+        return orientation_from_dlt(self.L, order, printed)
+
+    def as_dict(self) -> dict:
+        return dict(zip(DLT_NAMES, self.L))
+
+
+def _check_not_coplanar(XYZ, what: str):
+    s = np.linalg.svd(XYZ - XYZ.mean(axis=0), compute_uv=False)
+    if s[0] == 0 or s[2] <= 1e-9 * s[0]:
+        raise DegenerateGeometryError(f"{what} are coplanar (or collinear): the 11 DLT coefficients are not determined")
+
+
+def dlt_design(XYZ, xy):
+    """B and the free terms of (4.2.1)/(4.2.2): rows [X Y Z 1 0 0 0 0 −xX −xY −xZ], free term −x, then y."""
+    X, Y, Z = XYZ.T
+    x, y = xy.T
+    n = len(XYZ)
+    one, zero = np.ones(n), np.zeros(n)
+    B = np.empty((2 * n, 11))
+    B[0::2] = np.column_stack([X, Y, Z, one, zero, zero, zero, zero, -x * X, -x * Y, -x * Z])
+    B[1::2] = np.column_stack([zero, zero, zero, zero, X, Y, Z, one, -y * X, -y * Y, -y * Z])
+    return B, -xy.ravel()
+
+
+def dlt_resection(XYZ, xy, method: str = "normalized", weights=None) -> DLTResection:
+    """Projective space resection: L₁…L₁₁ from ≥ 6 non-coplanar control points, (4.2.1)–(4.2.3).
+
+    Parameters
+    ----------
+    XYZ : (n, 3) array
+        Control point coordinates (m), n ≥ 6, not all in one plane.
+    xy : (n, 2) array
+        Their image coordinates (mm).
+    method : {"normalized", "book"}
+        ``"book"`` solves (4.2.1) as printed by least squares, M = −(BᵀPB)⁻¹BᵀPL (the lost
+        (4.2.3)); ``"normalized"`` conditions both point sets by Hartley's transform, takes the
+        homogeneous SVD solution and converts it back to L₁…L₁₁.
+    weights : array, optional
+        p_i per point (n,) or per coordinate (n, 2); unit weights if omitted.
+
+    Returns
+    -------
+    DLTResection
+        L, Q, μ, m_L, r_ij, residuals of (4.2.1), reprojection errors. For ``"normalized"``
+        μ, m_L and the residuals are those of (4.2.1) evaluated at the normalised solution.
+
+    Raises
+    ------
+    InputError
+        Fewer than 6 points, mismatched shapes, NaN/inf, a bad option.
+    DegenerateGeometryError
+        Coplanar control points, or an object origin in the plane of the projection centre
+        parallel to the image (no L₁₂ = 1 normalisation possible).
+    """
+    _check_method(method)
+    XYZ = as_points(XYZ, 3, "control point coordinates XYZ")
+    xy = as_points(xy, 2, "image coordinates xy")
+    if len(XYZ) != len(xy):
+        raise InputError(f"{len(XYZ)} control points but {len(xy)} image points")
+    if len(XYZ) < 6:
+        raise InputError(f"the projective resection needs at least 6 control points, got {len(XYZ)}")
+    _check_not_coplanar(XYZ, "the control points")
+    n = len(XYZ)
+    P = None
+    if weights is not None:
+        P = np.asarray(weights, dtype=float)
+        if P.shape == (n,):
+            P = np.repeat(P, 2)
+        elif P.shape == (n, 2):
+            P = P.ravel()
+        else:
+            raise InputError(f"weights: expected shape ({n},) or ({n}, 2), got {P.shape}")
+        if not np.all(np.isfinite(P)) or np.any(P <= 0):
+            raise InputError("weights must be finite and positive")
+    B, free = dlt_design(XYZ, xy)
+    delta, Q = solve_normal_equations(B, free, P, DLT_NAMES)     # M = −Q·BᵀPL, (4.2.2)–(4.2.3)
+    if method == "book":
+        L = delta
+    else:
+        T = normalizing_transform(xy)
+        U = normalizing_transform(XYZ)
+        Xn = _homogeneous(XYZ) @ U.T
+        xn = _homogeneous(xy) @ T.T
+        A = np.zeros((2 * n, 12))
+        A[0::2, 0:4] = Xn
+        A[0::2, 8:12] = -xn[:, :1] * Xn
+        A[1::2, 4:8] = Xn
+        A[1::2, 8:12] = -xn[:, 1:2] * Xn
+        if P is not None:
+            A = np.sqrt(P)[:, None] * A
+        p, _ = _null_vector(A)
+        L = dlt_from_projection(np.linalg.solve(T, p.reshape(3, 4)) @ U)
+    V = B @ L + free
+    mu, std, corr = accuracy(V, Q, P)
+    image_residuals = dlt_project(L, XYZ) - xy
+    return DLTResection(L, Q, mu, std, corr, V.reshape(n, 2), image_residuals, 2 * n - 11, method)
+
+
+# --- §4.3 projective forward intersection ------------------------------------------------------------
+@dataclass
+class DLTIntersection:
+    """Object points by (4.3.1) with the precision of each: μ (1.8.9) and m_X, m_Y, m_Z (1.8.8)."""
+
+    XYZ: np.ndarray             # (n, 3)
+    std: np.ndarray             # (n, 3); NaN when there is no redundancy
+    mu: np.ndarray              # (n,)
+    residuals: np.ndarray       # (n, k, 2): v_x, v_y of (4.3.1) per image
+    image_residuals: np.ndarray  # (n, k, 2): DLT(X) − x per image, mm
+    dof: int
+
+
+def dlt_intersection(Ls, xys, weights=None) -> DLTIntersection:
+    """Projective forward intersection (4.3.1) from two or more images.
+
+    For every point and image: (L₁ − xL₉)X + (L₂ − xL₁₀)Y + (L₃ − xL₁₁)Z + L₄ − x = v_x and the
+    same with L₅…L₈ and y; all images are solved together by least squares (one
+    :func:`~photolib.lsq.solve_normal_equations` per point).
+
+    Parameters
+    ----------
+    Ls : sequence of (11,) arrays
+        The DLT coefficients of each image.
+    xys : sequence of (n, 2) arrays
+        Image coordinates of the same n points on each image.
+    weights : sequence of (n,) or (n, 2) arrays, optional
+    """
+    Ls = [_dlt_vector(L) for L in Ls]
+    if len(Ls) < 2 or len(xys) != len(Ls):
+        raise InputError(f"forward intersection needs ≥ 2 images with coefficients and coordinates each "
+                         f"(got {len(Ls)} coefficient sets, {len(xys)} coordinate sets)")
+    xys = [as_points(xy, 2, f"image {i + 1} coordinates") for i, xy in enumerate(xys)]
+    n = len(xys[0])
+    if any(len(xy) != n for xy in xys):
+        raise InputError("every image must give coordinates for the same points")
+    k = len(Ls)
+    if weights is None:
+        W = None
+    else:
+        W = []
+        for w in weights:
+            w = np.asarray(w, dtype=float)
+            w = np.repeat(w[:, None], 2, axis=1) if w.shape == (n,) else w
+            if w.shape != (n, 2) or not np.all(np.isfinite(w)) or np.any(w <= 0):
+                raise InputError(f"weights: expected positive finite arrays of shape ({n},) or ({n}, 2)")
+            W.append(w)
+        W = np.stack(W, axis=1)                                       # (n, k, 2)
+    xy = np.stack(xys, axis=1)                                        # (n, k, 2)
+    Lm = np.stack(Ls)                                                 # (k, 11)
+    # rows (L1 − xL9, L2 − xL10, L3 − xL11 | L4 − x), (L5 − yL9, … | L8 − y) for every image
+    Bx = Lm[None, :, 0:3] - xy[:, :, 0:1] * Lm[None, :, 8:11]
+    By = Lm[None, :, 4:7] - xy[:, :, 1:2] * Lm[None, :, 8:11]
+    lx = Lm[None, :, 3] - xy[:, :, 0]
+    ly = Lm[None, :, 7] - xy[:, :, 1]
+    B = np.stack([Bx, By], axis=2).reshape(n, 2 * k, 3)
+    free = np.stack([lx, ly], axis=2).reshape(n, 2 * k)
+    XYZ = np.empty((n, 3))
+    std = np.full((n, 3), np.nan)
+    mu = np.full(n, np.nan)
+    V = np.empty((n, 2 * k))
+    dof = 2 * k - 3
+    for i in range(n):
+        p = None if W is None else W[i].ravel()
+        try:
+            XYZ[i], Q = solve_normal_equations(B[i], free[i], p, ("X", "Y", "Z"))
+        except DegenerateGeometryError as err:
+            raise DegenerateGeometryError(f"point {i}: the rays do not intersect in a point ({err})") from err
+        V[i] = B[i] @ XYZ[i] + free[i]
+        mu[i], std[i], _ = accuracy(V[i], Q, p)
+    image_res = np.stack([dlt_project(L, XYZ) for L in Ls], axis=1) - xy
+    return DLTIntersection(XYZ, std, mu, V.reshape(n, k, 2), image_res, dof)
+
+
+# --- §4.4 fundamental and essential matrices -----------------------------------------------------------
+def skew_matrix(b) -> np.ndarray:
+    """S_b of (4.4.4): [[0, −b_z, b_y], [b_z, 0, −b_x], [−b_y, b_x, 0]], so that S_b·r = b × r (4.4.3)."""
+    b = np.asarray(b, dtype=float)
+    if b.shape != (3,) or not np.all(np.isfinite(b)):
+        raise InputError(f"b must be a finite 3-vector, got shape {b.shape}")
+    return np.array([[0.0, -b[2], b[1]], [b[2], 0.0, -b[0]], [-b[1], b[0], 0.0]])
+
+
+def normalized_image_coordinates(xy, io: InteriorOrientation) -> np.ndarray:
+    """r″ = K⁻¹(x, y, 1)ᵀ of (4.4.15) = ((x − x₀)/f, (y − y₀)/f, 1), one row per point.
+
+    This is the Chapter-1 ray (x − x₀, y − y₀, −f) divided by f and reflected by D = diag(1, 1, −1).
+    """
+    xy = as_points(xy, 2, "image coordinates")
+    return _homogeneous(xy) @ np.linalg.inv(calibration_matrix(io)).T
+
+
+def _layout(M, layout):
+    return M if _check_layout(layout) == "x2Fx1" else M.T.copy()
+
+
+def essential_from_orientation(eo1: ExteriorOrientation, eo2: ExteriorOrientation,
+                               layout: str = "x2Fx1") -> np.ndarray:
+    """E for normalised coordinates r″ (4.4.15) of two oriented images (a corrected (4.4.16)).
+
+    r₂″ᵀ E r₁″ = 0 with E = D·A₂ᵀ·S_b·A₁·D, b = (S₂ − S₁)/|S₂ − S₁| — the coplanarity (4.4.1) with
+    r_i = A_i·D·r_i″ (not A₂⁻¹ as printed). Scaled to unit Frobenius norm.
+    """
+    b = eo2.center - eo1.center
+    nb = np.linalg.norm(b)
+    if nb == 0:
+        raise DegenerateGeometryError("the two projection centres coincide: the base is zero")
+    E = D_REFLECTION @ eo2.matrix.T @ skew_matrix(b / nb) @ eo1.matrix @ D_REFLECTION
+    return _layout(E / np.linalg.norm(E), layout)
+
+
+def fundamental_from_orientation(io1: InteriorOrientation, eo1: ExteriorOrientation,
+                                 io2: InteriorOrientation, eo2: ExteriorOrientation,
+                                 layout: str = "x2Fx1") -> np.ndarray:
+    """F = K₂⁻ᵀ·E·K₁⁻¹ of two oriented images (a corrected (4.4.10)), unit Frobenius norm."""
+    E = essential_from_orientation(eo1, eo2)
+    F = np.linalg.inv(calibration_matrix(io2)).T @ E @ np.linalg.inv(calibration_matrix(io1))
+    return _layout(F / np.linalg.norm(F), layout)
+
+
+def _eight_point(h1, h2, method: str, rank: str):
+    """Linear solution of x₂ᵀ F x₁ = 0 from homogeneous rows h1, h2 (layout x2Fx1)."""
+    T1 = normalizing_transform(h1[:, :2] / h1[:, 2:])
+    T2 = normalizing_transform(h2[:, :2] / h2[:, 2:])
+    conditioned = np.einsum("ni,nj->nij", h2 @ T2.T, h1 @ T1.T).reshape(len(h1), 9)
+    if _null_vector(conditioned)[1][7] <= 1e-9 * np.linalg.norm(conditioned, 2):
+        raise DegenerateGeometryError(
+            "the correspondences fit a whole family of epipolar geometries (all object points in one plane, "
+            "a pure rotation without base, or repeated points): F is not determined")
+    if method == "normalized":
+        design = conditioned
+    else:                                                         # rows of (4.4.14), x2Fx1 order
+        design = np.einsum("ni,nj->nij", h2, h1).reshape(len(h1), 9)
+    F = _null_vector(design)[0].reshape(3, 3)
+    if rank == "rank2":                        # Hartley: rank 2 in the conditioned frame
+        U, sv, Vt = np.linalg.svd(F)
+        F = U @ np.diag([sv[0], sv[1], 0.0]) @ Vt
+    if method == "normalized":
+        F = T2.T @ F @ T1
+    if rank == "essential":                    # singular values (σ, σ, 0) in the frame of E itself
+        U, sv, Vt = np.linalg.svd(F)
+        F = U @ np.diag([1.0, 1.0, 0.0]) @ Vt * (sv[0] + sv[1]) / 2
+    return F
+
+
+def _scale(F, method):
+    if method == "book":
+        if abs(F[2, 2]) < 1e-12 * np.abs(F).max():
+            raise DegenerateGeometryError("f₃₃ ≈ 0: the book's normalisation f₃₃ = 1 (4.4.13) is impossible here")
+        return F / F[2, 2]
+    F = F / np.linalg.norm(F)
+    return F if F[2, 2] >= 0 else -F
+
+
+def fundamental_matrix(xy1, xy2, method: str = "normalized", layout: str = "x2Fx1") -> np.ndarray:
+    """Fundamental matrix from ≥ 8 correspondences, (4.4.11)–(4.4.14).
+
+    Parameters
+    ----------
+    xy1, xy2 : (n, 2) arrays
+        Image coordinates of the same points on images 1 and 2 (mm), n ≥ 8.
+    method : {"normalized", "book"}
+        ``"book"``: the SVD null vector of the coefficients of (4.4.14) from the raw coordinates,
+        scaled to f₃₃ = 1, no rank-2 constraint (what the book prints). ``"normalized"``:
+        Hartley's normalised 8-point algorithm, rank 2 enforced, unit Frobenius norm.
+    layout : {"x2Fx1", "x1Fx2"}
+        ``"x2Fx1"`` (default): x₂ᵀ F x₁ = 0 and l₂ = F x₁ — the layout of the book's numbers
+        and of OpenCV; ``"x1Fx2"``: the transpose, the F of equations (4.4.13)/(4.4.14).
+
+    Raises
+    ------
+    InputError
+        Fewer than 8 correspondences, mismatched shapes, NaN.
+    DegenerateGeometryError
+        Correspondences that leave a family of solutions (planar scene, pure rotation).
+    """
+    _check_method(method)
+    _check_layout(layout)
+    xy1, xy2 = _pair(xy1, xy2, 8, "the fundamental matrix")
+    F = _eight_point(_homogeneous(xy1), _homogeneous(xy2), method, "rank2" if method == "normalized" else "none")
+    return _layout(_scale(F, method), layout)
+
+
+def essential_matrix(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
+                     method: str = "normalized", layout: str = "x2Fx1") -> np.ndarray:
+    """Essential matrix from ≥ 8 correspondences with known interior orientation, (4.4.15)/(4.4.16).
+
+    The coordinates are first reduced to r″ = K⁻¹(x, y, 1)ᵀ (4.4.15); then the same linear
+    solution as :func:`fundamental_matrix`. ``"book"``: unconstrained, e₃₃ = 1 (the book's
+    example); ``"normalized"``: conditioned, singular values forced to (σ, σ, 0), unit norm.
+    (The book's remark that five points suffice needs the non-linear five-point solver.)
+    """
+    _check_method(method)
+    _check_layout(layout)
+    xy1, xy2 = _pair(xy1, xy2, 8, "the essential matrix")
+    io2 = io1 if io2 is None else io2
+    h1, h2 = normalized_image_coordinates(xy1, io1), normalized_image_coordinates(xy2, io2)
+    E = _eight_point(h1, h2, method, "essential" if method == "normalized" else "none")
+    return _layout(_scale(E, method), layout)
+
+
+def essential_from_fundamental(F, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
+                               layout: str = "x2Fx1") -> np.ndarray:
+    """E = K₂ᵀ·F·K₁ (layout x2Fx1; K₁ᵀ·F·K₂ for x1Fx2) — (4.4.10) with (4.4.16)."""
+    F = _matrix3(F, "F")
+    io2 = io1 if io2 is None else io2
+    K1, K2 = calibration_matrix(io1), calibration_matrix(io2)
+    return K2.T @ F @ K1 if _check_layout(layout) == "x2Fx1" else K1.T @ F @ K2
+
+
+def epipolar_residuals(F, xy1, xy2, layout: str = "x2Fx1") -> np.ndarray:
+    """Algebraic residuals x₂ᵀ F x₁ (or x₁ᵀ F x₂ for layout x1Fx2) of (4.4.13), one per point."""
+    F = _layout(_matrix3(F, "F"), layout)                       # now always x2Fx1
+    xy1, xy2 = _pair(xy1, xy2, 1, "epipolar residuals")
+    return np.einsum("ni,ij,nj->n", _homogeneous(xy2), F, _homogeneous(xy1))
+
+
+def sampson_distance(F, xy1, xy2, layout: str = "x2Fx1") -> np.ndarray:
+    """First-order geometric distance of each correspondence from the epipolar geometry (image units)."""
+    F = _layout(_matrix3(F, "F"), layout)
+    xy1, xy2 = _pair(xy1, xy2, 1, "Sampson distance")
+    h1, h2 = _homogeneous(xy1), _homogeneous(xy2)
+    Fx1 = h1 @ F.T
+    Ftx2 = h2 @ F
+    r = np.einsum("ni,ni->n", h2, Fx1)
+    return np.abs(r) / np.sqrt(Fx1[:, 0] ** 2 + Fx1[:, 1] ** 2 + Ftx2[:, 0] ** 2 + Ftx2[:, 1] ** 2)
+
+
+def epipolar_lines(F, xy, image: int = 2, layout: str = "x2Fx1") -> np.ndarray:
+    """Epipolar ("basis") lines (a, b, c), a·x + b·y + c = 0, scaled to a² + b² = 1.
+
+    ``image=2``: lines on image 2 of points ``xy`` of image 1, l₂ = F r₁ (the formula after
+    (4.4.16)); ``image=1``: lines on image 1 of points of image 2, l₁ = Fᵀ r₂.
+    """
+    F = _layout(_matrix3(F, "F"), layout)
+    if image not in (1, 2):
+        raise InputError(f"image must be 1 or 2, got {image!r}")
+    h = _homogeneous(as_points(xy, 2, "image coordinates"))
+    lines = h @ F.T if image == 2 else h @ F
+    norm = np.hypot(lines[:, 0], lines[:, 1])
+    if np.any(norm == 0):
+        raise DegenerateGeometryError("a point is the epipole: its epipolar line is undefined")
+    return lines / norm[:, None]
+
+
+@dataclass(frozen=True)
+class RelativeOrientation:
+    """Relative orientation from E in the system b_y, b_z, ω′₂, α′₂, κ′₂ of (2.7.5) (A′₁ = E).
+
+    The model frame is the camera-1 frame of Chapter 1 (image at z = −f). ``A2`` maps camera-2
+    axes to model axes; ``base`` is the unit vector S₁ → S₂ in the model frame;
+    b_y = B_Y/B_X, b_z = B_Z/B_X (§2.7). ``in_front`` counts the points that lie in front of
+    both cameras for the chosen solution (the cheirality test).
+    """
+
+    A2: np.ndarray
+    base: np.ndarray
+    by: float
+    bz: float
+    omega2: float
+    alpha2: float
+    kappa2: float
+    order: str
+    in_front: int
+    n_points: int
+
+    @property
+    def elements(self) -> np.ndarray:
+        """(b_y, b_z, ω′₂, α′₂, κ′₂)."""
+        return np.array([self.by, self.bz, self.omega2, self.alpha2, self.kappa2])
+
+
+def _ray_scales(r1, r2m, b):
+    """N₁, N₂ with N₁r₁ − N₂r₂ ≈ b (the vector forward intersection of §2.4), vectorised."""
+    c = np.cross(r1, r2m)
+    cc = np.einsum("ni,ni->n", c, c)
+    N1 = np.einsum("ni,ni->n", np.cross(b, r2m), c) / cc
+    N2 = np.einsum("ni,ni->n", np.cross(b, r1), c) / cc
+    return N1, N2
+
+
+def decompose_essential(E, xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
+                        order: str = "kaw", layout: str = "x2Fx1") -> RelativeOrientation:
+    """Rotation and base direction from E, with the cheirality test, and the elements of (2.7.5).
+
+    E (for r″ of (4.4.15)) is turned into the Chapter-1 frame, E₁ = D·E·D = A′₂ᵀ S_b (A′₁ = E);
+    its SVD gives two rotations and two base signs; the one that puts most points in front of
+    both cameras (positive ray scales N₁, N₂ of §2.4) is returned.
+    """
+    check_order(order)
+    E = _layout(_matrix3(E, "E"), layout)
+    xy1, xy2 = _pair(xy1, xy2, 1, "the decomposition of E")
+    io2 = io1 if io2 is None else io2
+    r1 = normalized_image_coordinates(xy1, io1) @ D_REFLECTION       # Chapter-1 rays / f
+    r2 = normalized_image_coordinates(xy2, io2) @ D_REFLECTION
+    E1 = D_REFLECTION @ E @ D_REFLECTION
+    U, s, Vt = np.linalg.svd(E1)
+    if s[1] <= 1e-9 * s[0]:
+        raise DegenerateGeometryError("E has rank < 2: no base direction can be recovered")
+    if np.linalg.det(U) < 0:
+        U = -U
+    if np.linalg.det(Vt) < 0:
+        Vt = -Vt
+    W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    best = None
+    for R in (U @ W @ Vt, U @ W.T @ Vt):          # R = A′₂ᵀ (camera 1 → camera 2)
+        for t in (U[:, 2], -U[:, 2]):             # t = A′₂ᵀ b
+            A2 = R.T
+            b = A2 @ t
+            N1, N2 = _ray_scales(r1, r2 @ A2.T, b)
+            score = int(np.sum((N1 > 0) & (N2 > 0)))
+            if best is None or score > best[0]:
+                best = (score, A2, b)
+    score, A2, b = best
+    if score == 0:
+        raise DegenerateGeometryError("no decomposition of E puts the points in front of both cameras")
+    if abs(b[0]) < 1e-12:
+        raise DegenerateGeometryError("B_X = 0: b_y = B_Y/B_X and b_z = B_Z/B_X of (2.7.3) are undefined")
+    w, a, k = rotation_angles(A2, order)
+    return RelativeOrientation(A2, b, float(b[1] / b[0]), float(b[2] / b[0]), w, a, k, order, score, len(xy1))
+
+
+def relative_orientation_projective(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
+                                    order: str = "kaw") -> RelativeOrientation:
+    """§4.4 end to end: E by the normalised 8-point method, then :func:`decompose_essential`."""
+    E = essential_matrix(xy1, xy2, io1, io2)
+    return decompose_essential(E, xy1, xy2, io1, io2, order)
+
+
+@dataclass
+class RansacResult:
+    """F estimated robustly: the matrix (layout x2Fx1 unless asked otherwise), the inlier mask, trials made."""
+
+    F: np.ndarray
+    inliers: np.ndarray
+    trials: int
+
+
+def ransac_fundamental(xy1, xy2, threshold: float, rng=0, max_trials: int = 2000,
+                       confidence: float = 0.999, layout: str = "x2Fx1") -> RansacResult:
+    """F from correspondences with outliers: RANSAC over 8-point samples, Sampson distance < threshold.
+
+    ``rng`` is a seed or a :class:`numpy.random.Generator` (deterministic by default). The
+    final F is the normalised 8-point solution on all inliers, whose set is then recomputed.
+    """
+    _check_layout(layout)
+    xy1, xy2 = _pair(xy1, xy2, 8, "RANSAC for the fundamental matrix")
+    if not (np.isfinite(threshold) and threshold > 0):
+        raise InputError(f"threshold must be positive, got {threshold}")
+    if not 0 < confidence < 1:
+        raise InputError(f"confidence must lie in (0, 1), got {confidence}")
+    rng = rng if isinstance(rng, np.random.Generator) else np.random.default_rng(rng)
+    n = len(xy1)
+    best_mask, best_count = None, 0
+    needed, trials = max_trials, 0
+    while trials < min(needed, max_trials):
+        trials += 1
+        sample = rng.choice(n, 8, replace=False)
+        try:
+            F = fundamental_matrix(xy1[sample], xy2[sample])
+        except DegenerateGeometryError:
+            continue
+        mask = sampson_distance(F, xy1, xy2) < threshold
+        count = int(mask.sum())
+        if count > best_count:
+            best_mask, best_count = mask, count
+            eps = 1 - count / n
+            needed = 0 if eps == 0 else int(np.ceil(np.log(1 - confidence) / np.log(1 - (1 - eps) ** 8)))
+    if best_count < 8:
+        raise DegenerateGeometryError(f"RANSAC found no epipolar geometry supported by 8 points in {trials} trials")
+    F = fundamental_matrix(xy1[best_mask], xy2[best_mask])
+    mask = sampson_distance(F, xy1, xy2) < threshold
+    if mask.sum() >= 8:
+        F = fundamental_matrix(xy1[mask], xy2[mask])
+    return RansacResult(_layout(F, layout), mask, trials)
+
+
+# --- plane-to-plane homography -------------------------------------------------------------------------
+def apply_homography(H, xy) -> np.ndarray:
+    """x′ = (h₁x + h₂y + h₃)/(h₇x + h₈y + 1), y′ = (h₄x + h₅y + h₆)/(h₇x + h₈y + 1) (H 3×3 or h₁…h₈)."""
+    H = np.asarray(H, dtype=float)
+    if H.shape == (8,):
+        H = np.append(H, 1.0).reshape(3, 3)
+    H = _matrix3(H, "H")
+    h = _homogeneous(as_points(xy, 2, "plane coordinates")) @ H.T
+    if np.any(np.abs(h[:, 2]) < 1e-15 * np.abs(h).max()):
+        raise DegenerateGeometryError("a point is mapped to infinity (on the vanishing line)")
+    return h[:, :2] / h[:, 2:]
+
+
+def _check_plane_points(src, dst):
+    src = as_points(src, 2, "source points")
+    dst = as_points(dst, 2, "destination points")
+    if len(src) != len(dst):
+        raise InputError(f"{len(src)} source points but {len(dst)} destination points")
+    if len(src) < 4:
+        raise InputError(f"a projective (8-parameter) transformation needs at least 4 points, got {len(src)}")
+    for pts, what in ((src, "source"), (dst, "destination")):
+        c = pts - pts.mean(axis=0)
+        s = np.linalg.svd(c, compute_uv=False)
+        if s[1] <= 1e-9 * s[0]:
+            raise DegenerateGeometryError(f"the {what} points are collinear: the homography is not determined")
+    return src, dst
+
+
+def homography_dlt(src, dst) -> np.ndarray:
+    """Plane-to-plane homography (8 parameters, h₃₃ = 1) by the normalised linear DLT, ≥ 4 points."""
+    src, dst = _check_plane_points(src, dst)
+    T1, T2 = normalizing_transform(src), normalizing_transform(dst)
+    s = _homogeneous(src) @ T1.T
+    d = _homogeneous(dst) @ T2.T
+    n = len(src)
+    A = np.zeros((2 * n, 9))
+    A[0::2, 0:3] = s
+    A[0::2, 6:9] = -d[:, :1] * s
+    A[1::2, 3:6] = s
+    A[1::2, 6:9] = -d[:, 1:2] * s
+    h, sv = _null_vector(A)
+    if sv[7] <= 1e-12 * sv[0]:
+        raise DegenerateGeometryError("the points leave the homography undetermined (three of them collinear?)")
+    H = np.linalg.solve(T2, h.reshape(3, 3)) @ T1
+    if abs(H[2, 2]) < 1e-12 * np.abs(H).max():
+        raise DegenerateGeometryError("h₃₃ = 0: the source origin maps to infinity; the 8-parameter form fails")
+    return H / H[2, 2]
+
+
+@dataclass
+class HomographyResult:
+    """Least-squares homography: H (h₃₃ = 1) and the adjustment (μ, m_h, r_ij, residuals in dst units)."""
+
+    H: np.ndarray
+    adjustment: Adjustment
+
+    @property
+    def residuals(self) -> np.ndarray:
+        return self.adjustment.residuals.reshape(-1, 2)
+
+
+def homography_lsq(src, dst, H0=None, weights=None, tol: float = 1e-12, max_iter: int = 50) -> HomographyResult:
+    """Homography by iterated least squares on the destination coordinates (Gauss–Newton of §1.8).
+
+    The residuals F_x = (h₁x + h₂y + h₃)/(h₇x + h₈y + 1) − x′ (and F_y) and their partial
+    derivatives come from :func:`photolib.derivations.homography_model`. ``H0`` defaults to
+    :func:`homography_dlt`. ``weights`` per point (n,) or per coordinate (n, 2).
+    """
+    from . import derivations
+
+    src, dst = _check_plane_points(src, dst)
+    n = len(src)
+    if H0 is None:
+        H0 = homography_dlt(src, dst)
+    H0 = np.asarray(H0, dtype=float)
+    h0 = (H0 / H0[2, 2]).ravel()[:8] if H0.shape == (3, 3) else H0
+    if h0.shape != (8,) or not np.all(np.isfinite(h0)):
+        raise InputError("H0 must be a 3×3 matrix or h₁…h₈")
+    P = None
+    if weights is not None:
+        P = np.asarray(weights, dtype=float)
+        P = np.repeat(P, 2) if P.shape == (n,) else P.ravel()
+        if P.shape != (2 * n,) or not np.all(np.isfinite(P)) or np.any(P <= 0):
+            raise InputError(f"weights: expected positive values of shape ({n},) or ({n}, 2)")
+    residual_fn, jacobian_fn = derivations.homography_model().compile()
+    data = (src[:, 0], src[:, 1], dst[:, 0], dst[:, 1])
+
+    def linearize(h):
+        F = residual_fn(*h, *data)                       # (2, n)
+        J = jacobian_fn(*h, *data)                       # (16, n)
+        B = np.empty((2 * n, 8))
+        B[0::2] = J[:8].T
+        B[1::2] = J[8:].T
+        return B, F.T.ravel()
+
+    adj = gauss_newton(linearize, h0, P, tol=tol * np.maximum(1.0, np.abs(h0)), max_iter=max_iter,
+                       names=HOMOGRAPHY_NAMES)
+    return HomographyResult(np.append(adj.x, 1.0).reshape(3, 3), adj)
