@@ -1,4 +1,10 @@
-"""Bundle block adjustment — Chapter 3, §3.5.
+"""Bundle block adjustment — Chapter 3, §3.5, with the extensions of §3.6, §3.8 and §3.9.
+
+Extensions (second half of the module): self-calibration (3.6.1)–(3.6.3) with f, x₀, y₀, k₁…p₂ as
+block-wide unknowns and the correlation report of §3.6 (:func:`self_calibrating_bundle_adjustment`);
+multi-camera rigs with constant mounting elements (3.8.2)–(3.8.15) (:func:`rig_bundle_adjustment`);
+rolling-shutter images (3.9.1)/(3.9.2) with their implicit projection (:func:`rolling_shutter_project`,
+:func:`rolling_shutter_bundle_adjustment`); the unknown counts (3.5.20), (3.8.1), (3.8.2), §3.6, §3.9.
 
 §3.5 "Построение и уравнивание маршрутной и блочной фототриангуляции по методу связок"
 (building and adjusting strip and block phototriangulation by the bundle method).
@@ -30,6 +36,7 @@ accuracy, so μ (3.5.12) is in millimetres of the image and estimates the image 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from types import SimpleNamespace
 
 import numpy as np
 import scipy.linalg  # noqa: F401 — imported here so that the solver's local imports cost nothing
@@ -40,11 +47,24 @@ from scipy.sparse.csgraph import connected_components
 from . import _bundle_generated
 from .camera import ExteriorOrientation, InteriorOrientation, correct_distortion
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
-from .lsq import BlockCorrectionEquations, block_gauss_newton
-from .rotation import check_order, rotation_matrix
+from .lsq import (BlockCorrectionEquations, GlobalBlockCorrectionEquations, block_equations_dense, block_gauss_newton,
+                  block_gauss_newton_global, global_block_equations_dense)
+from .rotation import check_order, rotation_angles, rotation_matrix
 
 __all__ = ["BundleResult", "CheckPointStatistics", "bundle_adjustment", "bundle_correction_equations",
-           "check_point_statistics", "as_observations"]
+           "check_point_statistics", "as_observations",
+           # §3.6 self-calibration
+           "IO_NAMES", "DISTORTION_NAMES", "CorrelationReport", "SelfCalibrationResult",
+           "self_calibrating_bundle_adjustment", "self_calibration_correction_equations",
+           # §3.8 rigs
+           "MOUNT_NAMES", "RigResult", "rig_image_orientation", "rig_correction_equations", "rig_bundle_adjustment",
+           "rig_design_matrix",
+           # §3.9 rolling shutter
+           "RollingShutterResult", "rolling_shutter_project", "rolling_shutter_correction_equations",
+           "rolling_shutter_bundle_adjustment",
+           # counts
+           "count_bundle_unknowns", "count_self_calibration_unknowns", "count_rig_unknowns",
+           "count_rolling_shutter_unknowns"]
 
 
 @dataclass
@@ -169,65 +189,12 @@ def _datum_rank(anchor_xyz, anchor_mask, angle_rows, centre, scale):
     return int(np.sum(sv > 1e-6 * max(sv[0], 1.0)))
 
 
-def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, *, control=None,
-                      control_sigma=None, gnss=None, gnss_sigma=0.05, ins=None, ins_sigma=np.radians(0.005),
-                      sigma_image: float = 0.005, order: str = "kaw", max_iter: int = 30,
-                      tol_centre: float = 1e-5, tol_angle: float = 1e-9, tol_point: float = 1e-5,
-                      covariance: bool | str = "auto", dense_limit: int = 0, progress=None) -> BundleResult:
-    """Adjust a block of frame images by the bundle method, §3.5.
+def _prepare_block(observations, cameras0, points0, io, control, control_sigma, gnss, gnss_sigma, ins, ins_sigma,
+                   sigma_image, order, correct_distortion_first=True):
+    """Validate a block and assemble control, GNSS and INS observations — shared by every bundle variant.
 
-    Parameters
-    ----------
-    observations : Observations, dict or (m, 4) array
-        Measured image coordinates (mm): ``image``, ``point``, ``xy`` (see
-        :class:`photolib.synthetic.Observations`). Distortion of ``io`` is corrected first (1.2.3).
-    cameras0 : (n, 6) array or list of ExteriorOrientation
-        Approximate X_S, Y_S, Z_S, ω, α, κ of every image (angles of sequence ``order``).
-    points0 : (k, 3) array
-        Approximate coordinates of every point (control points may hold anything; they are
-        replaced by ``control``).
-    io : InteriorOrientation
-        Known interior orientation (f, x₀, y₀, distortion), mm.
-    control : dict {point index: (X, Y, Z)} or (indices, (c, 3) array), optional
-        Geodetic control. With ``control_sigma=None`` the points are held fixed (rigid insertion,
-        (3.5.3)); otherwise they are unknowns with weighted observations (3.5.17), and a NaN
-        coordinate makes a planimetric (Z NaN) or height (X, Y NaN) control point.
-    control_sigma : None, float, (3,) or (c, 3)
-        Accuracy m of the control coordinates (m).
-    gnss : (n, 3) array, optional
-        GNSS projection centres (3.5.18), NaN rows for images without them; accuracy ``gnss_sigma`` (m).
-    ins : (n, 3) array, optional
-        Measured ω, α, κ (3.5.19), NaN rows where missing; accuracy ``ins_sigma`` (rad).
-    sigma_image : float
-        Accuracy of the image measurements (mm) — the unit weight σ₀ of (3.5.7).
-    order : {"kaw", "wak"}
-        Rotation sequence of the angles.
-    max_iter, tol_centre, tol_angle, tol_point
-        Iteration limit and the corrections (m, rad, m) below which the iteration stops.
-    covariance : bool or "auto"
-        Compute m_j (3.5.11) of all unknowns (needs the dense inverse of the reduced matrix,
-        O((6n)²) memory); ``"auto"`` does it for up to 500 free images.
-    dense_limit : int
-        Reduced systems (3.5.16) up to this size are factorised with dense Cholesky, larger ones
-        with the sparse symmetric factorisation. The default 0 always uses the sparse one: it is
-        as fast for small blocks and does not depend on multithreaded BLAS, which on a busy
-        machine made the dense path 10–40× slower in our measurements.
-    progress : callable, optional
-        Called with each :class:`photolib.lsq.IterationRecord`.
-
-    Returns
-    -------
-    BundleResult
-
-    Raises
-    ------
-    InputError
-        Malformed input; a free point measured in only one image; an image with fewer than three points.
-    DegenerateGeometryError
-        Too little control to fix the datum (position, rotation, scale); a block that falls apart
-        into groups of images without common points; points behind an image.
-    ConvergenceError
-        The iteration diverged or did not converge in ``max_iter`` steps.
+    Returns a namespace with image, point, xy, cams, pts, n, k, free_points, point_obs, frame_obs,
+    ctrl_idx, ctrl_xyz. Raises the errors documented in :func:`bundle_adjustment`.
     """
     check_order(order)
     if not isinstance(io, InteriorOrientation):
@@ -243,11 +210,11 @@ def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, 
     if image.max() >= n or point.max() >= k:
         raise InputError(f"observations refer to image {image.max()} / point {point.max()} "
                          f"but only {n} images / {k} points are given")
-    if np.any(np.bincount(image * k + point, minlength=n * k) > 1):
+    if np.unique(image.astype(np.int64) * k + point).size < image.size:
         raise InputError("a point is measured twice in the same image")
     if not sigma_image > 0:
         raise InputError("sigma_image must be positive")
-    if io.has_distortion:
+    if correct_distortion_first and io.has_distortion:
         xy = correct_distortion(xy, io)
 
     # control (3.5.3) fixed or (3.5.17) weighted
@@ -338,6 +305,75 @@ def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, 
             "scale); add control points (at least 3 not on one line, e.g. XYZ points in the block corners) "
             "or GNSS centres")
 
+    return SimpleNamespace(image=image, point=point, xy=xy, cams=cams, pts=pts, n=n, k=k, free_points=free_points,
+                           point_obs=point_obs, frame_obs=frame_obs, ctrl_idx=ctrl_idx, ctrl_xyz=ctrl_xyz)
+
+
+def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, *, control=None,
+                      control_sigma=None, gnss=None, gnss_sigma=0.05, ins=None, ins_sigma=np.radians(0.005),
+                      sigma_image: float = 0.005, order: str = "kaw", max_iter: int = 30,
+                      tol_centre: float = 1e-5, tol_angle: float = 1e-9, tol_point: float = 1e-5,
+                      covariance: bool | str = "auto", dense_limit: int = 0, progress=None) -> BundleResult:
+    """Adjust a block of frame images by the bundle method, §3.5.
+
+    Parameters
+    ----------
+    observations : Observations, dict or (m, 4) array
+        Measured image coordinates (mm): ``image``, ``point``, ``xy`` (see
+        :class:`photolib.synthetic.Observations`). Distortion of ``io`` is corrected first (1.2.3).
+    cameras0 : (n, 6) array or list of ExteriorOrientation
+        Approximate X_S, Y_S, Z_S, ω, α, κ of every image (angles of sequence ``order``).
+    points0 : (k, 3) array
+        Approximate coordinates of every point (control points may hold anything; they are
+        replaced by ``control``).
+    io : InteriorOrientation
+        Known interior orientation (f, x₀, y₀, distortion), mm.
+    control : dict {point index: (X, Y, Z)} or (indices, (c, 3) array), optional
+        Geodetic control. With ``control_sigma=None`` the points are held fixed (rigid insertion,
+        (3.5.3)); otherwise they are unknowns with weighted observations (3.5.17), and a NaN
+        coordinate makes a planimetric (Z NaN) or height (X, Y NaN) control point.
+    control_sigma : None, float, (3,) or (c, 3)
+        Accuracy m of the control coordinates (m).
+    gnss : (n, 3) array, optional
+        GNSS projection centres (3.5.18), NaN rows for images without them; accuracy ``gnss_sigma`` (m).
+    ins : (n, 3) array, optional
+        Measured ω, α, κ (3.5.19), NaN rows where missing; accuracy ``ins_sigma`` (rad).
+    sigma_image : float
+        Accuracy of the image measurements (mm) — the unit weight σ₀ of (3.5.7).
+    order : {"kaw", "wak"}
+        Rotation sequence of the angles.
+    max_iter, tol_centre, tol_angle, tol_point
+        Iteration limit and the corrections (m, rad, m) below which the iteration stops.
+    covariance : bool or "auto"
+        Compute m_j (3.5.11) of all unknowns (needs the dense inverse of the reduced matrix,
+        O((6n)²) memory); ``"auto"`` does it for up to 500 free images.
+    dense_limit : int
+        Reduced systems (3.5.16) up to this size are factorised with dense Cholesky, larger ones
+        with the band Cholesky after a bandwidth-reducing renumbering of the images
+        (:class:`photolib.lsq._Factorisation`). The default 0 always uses the band one: it is as
+        fast for small blocks and needs far less memory for large ones.
+    progress : callable, optional
+        Called with each :class:`photolib.lsq.IterationRecord`.
+
+    Returns
+    -------
+    BundleResult
+
+    Raises
+    ------
+    InputError
+        Malformed input; a free point measured in only one image; an image with fewer than three points.
+    DegenerateGeometryError
+        Too little control to fix the datum (position, rotation, scale); a block that falls apart
+        into groups of images without common points; points behind an image.
+    ConvergenceError
+        The iteration diverged or did not converge in ``max_iter`` steps.
+    """
+    b = _prepare_block(observations, cameras0, points0, io, control, control_sigma, gnss, gnss_sigma, ins, ins_sigma,
+                       sigma_image, order)
+    image, point, xy, cams, pts, n, k = b.image, b.point, b.xy, b.cams, b.pts, b.n, b.k
+    free_points, point_obs, frame_obs = b.free_points, b.point_obs, b.frame_obs
+
     use_cov = (6 * n <= 3000) if covariance == "auto" else bool(covariance)
 
     def linearize(frames, points):
@@ -396,14 +432,664 @@ def check_point_statistics(result: BundleResult, true_points, indices) -> CheckP
                                 max_abs=np.abs(err).max(axis=0), predicted=pred)
 
 
+# =================================================================================================
+# §3.6 Self-calibration, §3.8 multi-camera rigs, §3.9 UAV specifics (rolling shutter, corridors)
+# =================================================================================================
+EO_NAMES = ("X_S", "Y_S", "Z_S", "omega", "alpha", "kappa")
+IO_NAMES = ("f", "x0", "y0", "k1", "k2", "k3", "p1", "p2")
+DISTORTION_NAMES = IO_NAMES[3:]
+MOUNT_NAMES = ("B_X", "B_Y", "B_Z", "omega'", "alpha'", "kappa'")
+RATE_NAMES = ("k1 (dX_S/dx)", "k2 (dY_S/dx)", "k3 (dZ_S/dx)", "k4 (domega/dx)", "k5 (dalpha/dx)", "k6 (dkappa/dx)")
+
+
+# --- counts: (3.5.20), §3.6, (3.8.1)/(3.8.2), §3.9 ------------------------------------------------
+def _count_arg(value, what):
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+        raise InputError(f"{what} must be a non-negative integer, got {value!r}")
+    return int(value)
+
+
+def count_bundle_unknowns(n_images: int, n_points: int) -> int:
+    """N = 6n + 3k of (3.5.20): six EO per image, three coordinates per determined point."""
+    return 6 * _count_arg(n_images, "n_images") + 3 * _count_arg(n_points, "n_points")
+
+
+def count_self_calibration_unknowns(n_images: int, n_points: int, calibrate=IO_NAMES) -> int:
+    """(3.5.20) plus the block-wide unknowns of §3.6: + 5 for k₁, k₂, k₃, p₁, p₂ (the text), + 8 with f, x₀, y₀ ((3.6.3))."""
+    names = _check_calibrate(calibrate)
+    return count_bundle_unknowns(n_images, n_points) + len(names)
+
+
+def count_rig_unknowns(n_exposures: int, n_cameras: int, n_points: int = 0, parameterisation: str = "rig") -> int:
+    """Unknowns of a multi-camera block: N₁ = 6·n_s·n + 3k (3.8.1, ``"free"``) or N₂ = 6(n + n_s − 1) + 3k (3.8.2, ``"rig"``).
+
+    n = exposures (images of one camera), n_s = cameras in the rig, k = determined points.
+    """
+    n, ns, k = (_count_arg(v, w) for v, w in ((n_exposures, "n_exposures"), (n_cameras, "n_cameras"),
+                                                (n_points, "n_points")))
+    if ns < 1:
+        raise InputError("a rig has at least one camera")
+    if parameterisation == "free":
+        return 6 * ns * n + 3 * k
+    if parameterisation == "rig":
+        return 6 * (n + ns - 1) + 3 * k
+    raise InputError(f"parameterisation must be 'free' (3.8.1) or 'rig' (3.8.2), got {parameterisation!r}")
+
+
+def count_rolling_shutter_unknowns(n_images: int, n_points: int = 0, model: str = "full") -> int:
+    """§3.9: 12 unknowns per rolling-shutter image (6 EO + 6 rates, (3.9.2)), 9 in the simplified model, + 3k."""
+    per = {"full": 12, "linear": 9}.get(model)
+    if per is None:
+        raise InputError(f"model must be 'full' (12 per image) or 'linear' (9), got {model!r}")
+    return per * _count_arg(n_images, "n_images") + 3 * _count_arg(n_points, "n_points")
+
+
+# --- §3.6 self-calibration ---------------------------------------------------------------------
+def _check_calibrate(calibrate):
+    names = tuple(calibrate)
+    unknown = [c for c in names if c not in IO_NAMES]
+    if unknown or len(set(names)) != len(names) or not names:
+        raise InputError(f"calibrate: choose distinct names among {IO_NAMES}, got {names}")
+    return tuple(c for c in IO_NAMES if c in names)
+
+
+def _io_vector(io: InteriorOrientation) -> np.ndarray:
+    return np.array([io.f, io.x0, io.y0, io.k1, io.k2, io.k3, io.p1, io.p2], dtype=float)
+
+
+def _zstar_check(cameras, points, image, point, order):
+    A = rotation_matrix(cameras[:, 3], cameras[:, 4], cameras[:, 5], order)
+    zstar = np.einsum("ki,ki->k", A[image][:, :, 2], points[point] - cameras[image, :3])
+    if np.any(zstar >= 0):
+        bad = np.flatnonzero(zstar >= 0)[:10]
+        raise DegenerateGeometryError(f"observations {bad.tolist()}: the point is not in front of the image (z* ≥ 0)")
+
+
+def self_calibration_correction_equations(image, point, xy, cameras, points, io_values, calibrate=IO_NAMES,
+                                          order: str = "kaw") -> GlobalBlockCorrectionEquations:
+    """Correction equations (3.6.3) of all observations: a₁…a₆ (B1), a₇…a₉ (B2), a₁₀…a₁₇ (B3).
+
+    ``io_values`` are the current f, x₀, y₀, k₁, k₂, k₃, p₁, p₂; B3 holds the columns of the
+    names in ``calibrate`` (in the order of :data:`IO_NAMES`). Free terms
+    l = x₀ − f x*/z* − x − Δ_x (3.6.1). Derivatives from :func:`photolib.derivations.self_calibration_model`.
+    """
+    names = _check_calibrate(calibrate)
+    _zstar_check(cameras, points, image, point, order)
+    fn = getattr(_bundle_generated, f"selfcal_{order}")
+    c, X = cameras[image], points[point]
+    F, J = fn(c[:, 0], c[:, 1], c[:, 2], c[:, 3], c[:, 4], c[:, 5], X[:, 0], X[:, 1], X[:, 2],
+              *[float(v) for v in io_values], xy[:, 0], xy[:, 1])
+    J = J.reshape(2, 17, -1).transpose(2, 0, 1)
+    cols = [9 + IO_NAMES.index(nm) for nm in names]
+    return GlobalBlockCorrectionEquations(frame=image, point=point, B1=J[:, :, :6], B2=J[:, :, 6:9], L=F.T,
+                                          P=1.0, B3=J[:, :, cols])
+
+
+@dataclass
+class CorrelationReport:
+    """Correlations of the block-wide unknowns (§3.6): among themselves and with the EO and points.
+
+    ``among[i, j]`` is r between unknowns i and j of ``names``; ``with_eo[i, c]`` the largest |r|
+    over all images between unknown i and EO component c (X_S … κ), signed; ``with_points[i, c]``
+    the same over all free points and X, Y, Z.
+    """
+
+    names: tuple
+    among: np.ndarray
+    with_eo: np.ndarray
+    with_points: np.ndarray
+    limit: float
+
+    def high(self) -> list:
+        """(a, b, r) for every pair with |r| > ``limit`` — candidates to drop or re-model."""
+        out = []
+        g = len(self.names)
+        for i in range(g):
+            for j in range(i + 1, g):
+                if abs(self.among[i, j]) > self.limit:
+                    out.append((self.names[i], self.names[j], float(self.among[i, j])))
+            for c, nm in enumerate(EO_NAMES):
+                if abs(self.with_eo[i, c]) > self.limit:
+                    out.append((self.names[i], f"{nm} (an image)", float(self.with_eo[i, c])))
+            for c, nm in enumerate("XYZ"):
+                if abs(self.with_points[i, c]) > self.limit:
+                    out.append((self.names[i], f"{nm} (a point)", float(self.with_points[i, c])))
+        return out
+
+    def __str__(self) -> str:
+        w = max(8, max(len(n) for n in self.names) + 1)
+        lines = ["correlations among the block-wide unknowns:",
+                 " " * w + "".join(f"{n:>8}" for n in self.names)]
+        lines += [f"{a:<{w}}" + "".join(f"{v:8.2f}" for v in row) for a, row in zip(self.names, self.among)]
+        lines += ["largest |r| with the exterior orientation (over all images) and with the points:",
+                  " " * w + "".join(f"{n:>8}" for n in EO_NAMES + ("X", "Y", "Z"))]
+        lines += [f"{a:<{w}}" + "".join(f"{v:8.2f}" for v in np.concatenate([e, p]))
+                  for a, e, p in zip(self.names, self.with_eo, self.with_points)]
+        high = self.high()
+        lines.append(f"|r| > {self.limit}: " + ("none" if not high else
+                                                 "; ".join(f"{a}–{b} {r:+.3f}" for a, b, r in high)))
+        return "\n".join(lines)
+
+
+def _correlation_report(adj, names, limit):
+    q3 = np.diag(adj.Q3)
+    s3 = np.sqrt(q3)
+    among = adj.Q3 / np.outer(s3, s3)
+    s1 = np.sqrt(np.einsum("kii->ki", adj.Q1))
+    r13 = adj.Q13 / (s1[:, :, None] * s3[None, None, :])                 # (n, 6, g)
+    s2 = np.sqrt(np.einsum("kii->ki", adj.Q2))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r23 = np.where(s2[:, :, None] > 0, adj.Q23 / (s2[:, :, None] * s3[None, None, :]), 0.0)
+
+    def signed_max(r):
+        flat = r.reshape(-1, r.shape[1], r.shape[2])
+        idx = np.abs(flat).argmax(axis=0)
+        return np.take_along_axis(flat, idx[None], axis=0)[0].T          # (g, components)
+
+    return CorrelationReport(tuple(names), among, signed_max(r13), signed_max(r23), float(limit))
+
+
+@dataclass
+class SelfCalibrationResult(BundleResult):
+    """:class:`BundleResult` of a self-calibrating adjustment plus the recovered camera (§3.6)."""
+
+    io: InteriorOrientation | None = None          # adjusted interior orientation and distortion
+    calibrated: tuple = ()                        # names of the estimated block-wide unknowns
+    io_std: dict = field(default_factory=dict)    # m_j (3.5.11) of each, mm / mm⁻ⁿ
+    correlations: CorrelationReport | None = None
+
+
+def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: InteriorOrientation, *,
+                                       calibrate=IO_NAMES, io_sigma=None, control=None, control_sigma=None,
+                                       gnss=None, gnss_sigma=0.05, ins=None, ins_sigma=np.radians(0.005),
+                                       sigma_image: float = 0.005, order: str = "kaw", max_iter: int = 30,
+                                       tol_centre: float = 1e-5, tol_angle: float = 1e-9, tol_point: float = 1e-5,
+                                       correlation_limit: float = 0.9) -> SelfCalibrationResult:
+    """Bundle adjustment with self-calibration, §3.6: (3.6.1)–(3.6.3).
+
+    The interior orientation f, x₀, y₀ and the distortion coefficients k₁, k₂, k₃, p₁, p₂ of
+    (3.6.2) (= (1.2.2): the correction Δ is *added to the measured coordinates*, computed from
+    them reduced to the principal point) are unknowns common to every image. They enter every
+    correction equation (3.6.3) and join the reduced system after the points are eliminated
+    (:func:`photolib.lsq.solve_block_normal_equations_global`).
+
+    Parameters
+    ----------
+    observations, cameras0, points0, control, control_sigma, gnss, gnss_sigma, ins, ins_sigma, sigma_image, order
+        As in :func:`bundle_adjustment` (the measured coordinates are *not* corrected beforehand).
+    io0 : InteriorOrientation
+        Start values of all eight; the ones not in ``calibrate`` stay fixed at them.
+    calibrate : sequence of names from :data:`IO_NAMES`
+        The block-wide unknowns: all eight by default (as (3.6.3) is written); ``DISTORTION_NAMES``
+        for the five polynomial coefficients the text counts.
+    io_sigma : dict {name: σ}, optional
+        Prior calibration values of ``io0`` as weighted observations with these accuracies.
+    correlation_limit : float
+        |r| above which :attr:`CorrelationReport.high` flags a pair.
+
+    Raises
+    ------
+    DegenerateGeometryError
+        Besides the cases of :func:`bundle_adjustment`: the block cannot separate a block-wide
+        unknown from the others — e.g. f from the heights Z_S of flat terrain seen in nadir images
+        (a change of f is then exactly a change of every flying height) — with the unknowns named.
+    """
+    names = _check_calibrate(calibrate)
+    if not isinstance(io0, InteriorOrientation):
+        raise InputError("io0 must be an InteriorOrientation (start values of the calibration)")
+    if not 0 < correlation_limit < 1:
+        raise InputError("correlation_limit must lie in (0, 1)")
+    b = _prepare_block(observations, cameras0, points0, io0, control, control_sigma, gnss, gnss_sigma, ins,
+                       ins_sigma, sigma_image, order, correct_distortion_first=False)
+    full = _io_vector(io0)
+    cols = [IO_NAMES.index(nm) for nm in names]
+    g0 = full[cols]
+    gobs = None
+    if io_sigma:
+        vals, wts = np.full(len(names), np.nan), np.zeros(len(names))
+        for nm, sg in dict(io_sigma).items():
+            if nm not in names or not sg > 0:
+                raise InputError(f"io_sigma: {nm!r} must be a calibrated unknown with a positive σ")
+            vals[names.index(nm)] = g0[names.index(nm)]
+            wts[names.index(nm)] = (sigma_image / sg) ** 2
+        gobs = (vals, wts)
+
+    def linearize(frames, points, glob):
+        v = full.copy()
+        v[cols] = glob
+        return self_calibration_correction_equations(b.image, b.point, b.xy, frames, points, v, names, order)
+
+    tol_g = np.array([1e-7 if nm in ("f", "x0", "y0") else 1e-6 * (0.1 ** (2 * (IO_NAMES.index(nm) - 2)))
+                      if nm.startswith("k") else 1e-10 for nm in names])
+    try:
+        adj = block_gauss_newton_global(linearize, b.cams, b.pts, g0, frame_observations=b.frame_obs,
+                                        point_observations=b.point_obs, global_observations=gobs,
+                                        free_points=b.free_points, tol_frames=[tol_centre] * 3 + [tol_angle] * 3,
+                                        tol_points=tol_point, tol_globals=tol_g, max_iter=max_iter, covariance=True,
+                                        global_names=names, frame_names=EO_NAMES)
+    except DegenerateGeometryError as exc:
+        if "not in front" in str(exc):
+            raise ConvergenceError(f"the iteration diverged: {exc}") from exc
+        raise
+    v = full.copy()
+    v[cols] = adj.globals
+    io = InteriorOrientation(*v)
+    n, k = b.n, b.k
+    fr = adj.frame_residuals if b.frame_obs is not None else np.zeros((n, 6))
+    zeros3 = np.zeros((n, 3))
+    return SelfCalibrationResult(
+        cameras=adj.frames, points=adj.points, mu=adj.mu, dof=adj.dof, cameras_std=adj.frames_std,
+        points_std=adj.points_std, residuals=adj.residuals,
+        control_residuals=adj.point_residuals if b.point_obs is not None else np.zeros((k, 3)),
+        gnss_residuals=fr[:, :3] if gnss is not None else zeros3, ins_residuals=fr[:, 3:] if ins is not None else zeros3,
+        iterations=adj.iterations, history=adj.history, order=order, io=io, calibrated=names,
+        io_std=dict(zip(names, adj.globals_std)), correlations=_correlation_report(adj, names, correlation_limit))
+
+
+# --- §3.8 multi-camera rigs ----------------------------------------------------------------------
+def rig_image_orientation(exposure_eo, mount, order: str = "kaw") -> np.ndarray:
+    """EO (X_S, Y_S, Z_S, ω, α, κ) of a rig camera from the reference EO and its mounting elements.
+
+    S₂ = S₁ + A₁B (3.8.5), C₂ = A₁A₂′ (3.8.8); the angles of C₂ by (1.3.3)/(1.3.6). Arrays of
+    shape (..., 6) broadcast.
+    """
+    check_order(order)
+    e = np.asarray(exposure_eo, dtype=float)
+    mnt = np.asarray(mount, dtype=float)
+    if e.shape[-1] != 6 or mnt.shape[-1] != 6:
+        raise InputError("exposure_eo and mount must end in 6 values")
+    A1 = rotation_matrix(e[..., 3], e[..., 4], e[..., 5], order)
+    A2 = rotation_matrix(mnt[..., 3], mnt[..., 4], mnt[..., 5], order)
+    S2 = e[..., :3] + np.einsum("...ij,...j->...i", A1, mnt[..., :3] * np.ones_like(e[..., :3]))
+    ang = rotation_angles(A1 @ A2, order)
+    return np.concatenate([S2, np.stack(np.broadcast_arrays(*ang), axis=-1)], axis=-1)
+
+
+def _rig_layout(exposure_of_image, camera_of_image):
+    e = np.asarray(exposure_of_image)
+    c = np.asarray(camera_of_image)
+    if e.ndim != 1 or c.shape != e.shape or e.size == 0:
+        raise InputError("exposure_of_image and camera_of_image must be 1-D arrays of the same length")
+    for nm, a in (("exposure_of_image", e), ("camera_of_image", c)):
+        if not np.all(np.isfinite(a.astype(float))) or np.any(a != np.round(a)) or a.min() < 0:
+            raise InputError(f"{nm} must hold non-negative integers")
+    e, c = e.astype(np.intp), c.astype(np.intp)
+    if np.unique(e * (c.max() + 1) + c).size != e.size:
+        raise InputError("two images share the same exposure and camera")
+    n_exp, n_cam = int(e.max()) + 1, int(c.max()) + 1
+    ref = np.full(n_exp, -1)
+    ref[e[c == 0]] = np.flatnonzero(c == 0)
+    return e, c, n_exp, n_cam, ref
+
+
+def rig_correction_equations(image, point, xy, exposure_of_image, camera_of_image, exposures, mounts, points,
+                             ios, order: str = "kaw") -> GlobalBlockCorrectionEquations:
+    """Correction equations (3.8.14) (reference camera) and (3.8.15) (other cameras) of a rig block.
+
+    Frames are the exposures (δX_S1 … δκ₁); the block-wide unknowns are the 6 mounting elements
+    B_X, B_Y, B_Z, ω′, α′, κ′ of every camera but the reference one (camera 0), so B3 has
+    6(n_s − 1) columns and an observation in camera c only fills the six of its camera.
+    Derivatives from :func:`photolib.derivations.rig_collinearity_model`.
+    """
+    e_img, c_img = np.asarray(exposure_of_image), np.asarray(camera_of_image)
+    ex, cam = e_img[image], c_img[image]
+    n_cam = mounts.shape[0] + 1
+    m = image.size
+    B1, B2, L = np.zeros((m, 2, 6)), np.zeros((m, 2, 3)), np.zeros((m, 2))
+    B3 = np.zeros((m, 2, 6 * (n_cam - 1)))
+    per_image = rig_image_orientation(exposures[e_img], np.vstack([np.zeros((1, 6)), mounts])[c_img], order)
+    _zstar_check(per_image, points, image, point, order)
+    for c in range(n_cam):
+        sel = np.flatnonzero(cam == c)
+        if not sel.size:
+            continue
+        io = ios[c]
+        e, X = exposures[ex[sel]], points[point[sel]]
+        if c == 0:
+            F, J = getattr(_bundle_generated, f"collinearity_{order}")(
+                e[:, 0], e[:, 1], e[:, 2], e[:, 3], e[:, 4], e[:, 5], X[:, 0], X[:, 1], X[:, 2],
+                xy[sel, 0], xy[sel, 1], io.f, io.x0, io.y0)
+            J = J.reshape(2, 9, -1).transpose(2, 0, 1)
+            B1[sel], B2[sel] = J[:, :, :6], J[:, :, 6:]
+        else:
+            mt = mounts[c - 1]
+            F, J = getattr(_bundle_generated, f"rig_{order}")(
+                e[:, 0], e[:, 1], e[:, 2], e[:, 3], e[:, 4], e[:, 5], *mt, X[:, 0], X[:, 1], X[:, 2],
+                xy[sel, 0], xy[sel, 1], io.f, io.x0, io.y0)
+            J = J.reshape(2, 15, -1).transpose(2, 0, 1)
+            B1[sel], B2[sel] = J[:, :, :6], J[:, :, 12:]
+            B3[sel, :, 6 * (c - 1):6 * c] = J[:, :, 6:12]
+        L[sel] = F.T
+    return GlobalBlockCorrectionEquations(frame=ex, point=point, B1=B1, B2=B2, L=L, P=1.0, B3=B3)
+
+
+@dataclass
+class RigResult:
+    """Adjusted rig block (§3.8): reference EO per exposure, mounting elements, points, accuracy."""
+
+    exposures: np.ndarray            # (n, 6) EO of the reference camera per exposure
+    mounts: np.ndarray               # (n_s − 1, 6) B_X, B_Y, B_Z (m, reference-camera frame), ω′, α′, κ′
+    points: np.ndarray
+    mu: float
+    dof: int
+    exposures_std: np.ndarray
+    mounts_std: np.ndarray
+    points_std: np.ndarray
+    mount_correlation: np.ndarray    # (6(n_s−1), 6(n_s−1))
+    residuals: np.ndarray
+    iterations: int
+    order: str
+    n_unknowns: int
+
+    def image_orientation(self, exposure: int, camera: int) -> np.ndarray:
+        """EO of camera ``camera`` at ``exposure`` by (3.8.5)/(3.8.8)."""
+        mount = np.zeros(6) if camera == 0 else self.mounts[camera - 1]
+        return rig_image_orientation(self.exposures[exposure], mount, self.order)
+
+
+def _ios_per_camera(ios, n_cam):
+    ios = [ios] * n_cam if isinstance(ios, InteriorOrientation) else list(ios)
+    if len(ios) != n_cam or not all(isinstance(i, InteriorOrientation) for i in ios):
+        raise InputError(f"ios: give one InteriorOrientation or one per camera ({n_cam})")
+    return ios
+
+
+def rig_bundle_adjustment(observations, exposure_of_image, camera_of_image, exposures0, mounts0, points0, ios, *,
+                          control=None, control_sigma=None, gnss=None, gnss_sigma=0.05, sigma_image: float = 0.005,
+                          order: str = "kaw", max_iter: int = 30, tol_centre: float = 1e-5, tol_angle: float = 1e-9,
+                          tol_point: float = 1e-5) -> RigResult:
+    """Bundle adjustment of a multi-camera rig with constant mounting elements, §3.8 (3.8.2)–(3.8.15).
+
+    Unknowns: the EO of the reference camera (camera 0, e.g. the nadir camera) per exposure, the 6
+    mounting elements of every other camera (lever arm B in the reference-camera frame and the
+    rotation A₂′, constant over the flight) and the points — N₂ = 6(n + n_s − 1) + 3k (3.8.2).
+    The free alternative, every image with its own EO (3.8.1), is :func:`bundle_adjustment`.
+
+    Parameters
+    ----------
+    observations : as in :func:`bundle_adjustment`; ``image`` indexes the images.
+    exposure_of_image, camera_of_image : int arrays (n_images,)
+        Exposure and camera of each image; every exposure must contain a camera-0 image.
+    exposures0 : (n, 6), mounts0 : (n_s − 1, 6), points0 : (k, 3)
+        Approximations.
+    ios : InteriorOrientation or one per camera
+        Known interior orientation (distortion corrected first).
+    gnss : (n, 3), optional
+        GNSS centres of the reference camera per exposure (NaN rows where missing).
+    """
+    check_order(order)
+    e_img, c_img, n_exp, n_cam, ref = _rig_layout(exposure_of_image, camera_of_image)
+    if np.any(ref < 0):
+        raise InputError(f"exposures {np.flatnonzero(ref < 0)[:10].tolist()} have no reference-camera (camera 0) image")
+    ios = _ios_per_camera(ios, n_cam)
+    exp0 = np.array(exposures0, dtype=float)
+    mnt0 = np.array(mounts0, dtype=float).reshape(-1, 6) if n_cam > 1 else np.zeros((0, 6))
+    if exp0.shape != (n_exp, 6) or mnt0.shape != (n_cam - 1, 6):
+        raise InputError(f"exposures0 must be ({n_exp}, 6) and mounts0 ({n_cam - 1}, 6)")
+    if not (np.all(np.isfinite(exp0)) and np.all(np.isfinite(mnt0))):
+        raise InputError("exposures0/mounts0 contain NaN or inf")
+    cams_img = rig_image_orientation(exp0[e_img], np.vstack([np.zeros((1, 6)), mnt0])[c_img], order)
+    gnss_img = None
+    if gnss is not None:
+        gn = np.asarray(gnss, dtype=float)
+        if gn.shape != (n_exp, 3):
+            raise InputError(f"gnss: expected ({n_exp}, 3) reference-camera centres")
+        gnss_img = np.full((e_img.size, 3), np.nan)
+        gnss_img[ref] = gn
+    # validation with the per-image orientation; distortion of each camera corrected here
+    b = _prepare_block(observations, cams_img, points0, ios[0], control, control_sigma, gnss_img, gnss_sigma, None,
+                       np.radians(0.005), sigma_image, order, correct_distortion_first=False)
+    xy = b.xy.copy()
+    for c in range(n_cam):
+        sel = c_img[b.image] == c
+        if ios[c].has_distortion and sel.any():
+            xy[sel] = correct_distortion(xy[sel], ios[c])
+    frame_obs = None
+    if b.frame_obs is not None:
+        frame_obs = (b.frame_obs[0][ref], b.frame_obs[1][ref])
+
+    def linearize(frames, points, glob):
+        return rig_correction_equations(b.image, b.point, xy, e_img, c_img, frames, glob.reshape(-1, 6), points,
+                                        ios, order)
+
+    mount_names = [f"{nm} (camera {c})" for c in range(1, n_cam) for nm in MOUNT_NAMES]
+    try:
+        adj = block_gauss_newton_global(linearize, exp0, b.pts, mnt0.ravel(), frame_observations=frame_obs,
+                                        point_observations=b.point_obs, free_points=b.free_points,
+                                        tol_frames=[tol_centre] * 3 + [tol_angle] * 3, tol_points=tol_point,
+                                        tol_globals=np.tile([tol_centre] * 3 + [tol_angle] * 3, n_cam - 1),
+                                        max_iter=max_iter, covariance=True, global_names=mount_names,
+                                        frame_names=EO_NAMES)
+    except DegenerateGeometryError as exc:
+        if "not in front" in str(exc):
+            raise ConvergenceError(f"the iteration diverged: {exc}") from exc
+        raise
+    s = np.sqrt(np.diag(adj.Q3)) if adj.Q3.size else np.zeros(0)
+    corr = adj.Q3 / np.outer(s, s) if s.size else np.zeros((0, 0))
+    n_unk = 6 * n_exp + adj.globals.size + 3 * int(b.free_points.sum())
+    return RigResult(exposures=adj.frames, mounts=adj.globals.reshape(-1, 6), points=adj.points, mu=adj.mu,
+                     dof=adj.dof, exposures_std=adj.frames_std, mounts_std=adj.globals_std.reshape(-1, 6),
+                     points_std=adj.points_std, mount_correlation=corr, residuals=adj.residuals,
+                     iterations=adj.iterations, order=order, n_unknowns=n_unk)
+
+
+def rig_design_matrix(observations, exposure_of_image, camera_of_image, exposures, mounts, points, ios, *,
+                      free_points=None, parameterisation: str = "rig", order: str = "kaw"):
+    """Dense correction-equation matrix of a small rig block — the structure of fig. 3.18 / fig. 3.11.
+
+    ``"rig"``: columns = EO per exposure | mounting elements | free points (fig. 3.18);
+    ``"free"``: columns = EO per image | free points (fig. 3.11, (3.8.1)). Returns (A, L).
+    """
+    image, point, xy = as_observations(observations)
+    e_img, c_img, n_exp, n_cam, _ = _rig_layout(exposure_of_image, camera_of_image)
+    ios = _ios_per_camera(ios, n_cam)
+    exposures, points = np.asarray(exposures, dtype=float), np.asarray(points, dtype=float)
+    mounts = np.asarray(mounts, dtype=float).reshape(-1, 6)
+    if parameterisation == "rig":
+        eq = rig_correction_equations(image, point, xy, e_img, c_img, exposures, points=points, mounts=mounts,
+                                      ios=ios, order=order)
+        B, L, _ = global_block_equations_dense(eq, n_exp, points.shape[0], free_points)
+    elif parameterisation == "free":
+        cams = rig_image_orientation(exposures[e_img], np.vstack([np.zeros((1, 6)), mounts])[c_img], order)
+        rows = []
+        for c in range(n_cam):
+            rows.append(c_img[image] == c)
+        B_parts = np.zeros((2 * image.size, 6 * e_img.size + 3 * int(np.sum(
+            np.ones(points.shape[0], bool) if free_points is None else free_points))))
+        Lv = np.zeros(2 * image.size)
+        for c, sel in enumerate(rows):
+            if not sel.any():
+                continue
+            eq = bundle_correction_equations(image[sel], point[sel], xy[sel], cams, points, ios[c], order)
+            Bc, Lc, _ = block_equations_dense(eq, e_img.size, points.shape[0], free_points)
+            idx = np.flatnonzero(sel)
+            r = np.column_stack([2 * idx, 2 * idx + 1]).ravel()
+            B_parts[r], Lv[r] = Bc, Lc
+        B, L = B_parts, Lv
+    else:
+        raise InputError(f"parameterisation must be 'rig' or 'free', got {parameterisation!r}")
+    return B, L
+
+
+# --- §3.9 rolling shutter ----------------------------------------------------------------------
+def _rs_frames(cameras, rates, n):
+    cams = np.asarray(cameras, dtype=float).reshape(-1, 6)
+    rt = np.zeros((cams.shape[0], 6)) if rates is None else np.asarray(rates, dtype=float).reshape(-1, 6)
+    if cams.shape[0] not in (1, n) and n:
+        pass
+    if rt.shape != cams.shape:
+        raise InputError(f"rates must have the shape of the exterior orientations {cams.shape}, got {rt.shape}")
+    if not (np.all(np.isfinite(cams)) and np.all(np.isfinite(rt))):
+        raise InputError("exterior orientation or rates contain NaN or inf")
+    return cams, rt
+
+
+def rolling_shutter_project(eo0, rates, XYZ, io: InteriorOrientation, order: str = "kaw", *, image=None,
+                            tol: float = 1e-10, max_iter: int = 50, return_iterations: bool = False):
+    """Project object points into rolling-shutter images, (3.9.1) with (3.9.2), by iteration.
+
+    The EO of the line that records a point depends on that point's own image coordinate x:
+    EO(x) = EO₀ + k·x (3.9.2). The projection is therefore implicit; it is solved by the
+    fixed-point iteration x ← x₀ − f x*/z*(EO(x)), starting from the frame projection
+    (x = 0). The iteration contracts when the image moves little during the readout (the usual
+    case: a few iterations); otherwise :class:`ConvergenceError` is raised.
+
+    Parameters
+    ----------
+    eo0 : (6,) or (n, 6)
+        EO at the line x = 0 (X_S0, …, κ₀).
+    rates : (6,) or (n, 6) or None
+        k₁ … k₆ of (3.9.2): change of X_S, Y_S, Z_S (m/mm) and of ω, α, κ (rad/mm) per mm of x.
+        ``None`` or zeros: a frame (global-shutter) image.
+    XYZ : (k, 3)
+        Object points.
+    image : int array (k,), optional
+        Image of each point when several EO are given.
+    tol, max_iter
+        Stop when every |Δx| < tol (mm); raise after ``max_iter`` iterations.
+    return_iterations : bool
+        Also return the number of iterations used.
+    """
+    check_order(order)
+    if not isinstance(io, InteriorOrientation):
+        raise InputError("io must be an InteriorOrientation")
+    X = np.asarray(XYZ, dtype=float)
+    X = X.reshape(1, 3) if X.shape == (3,) else X
+    if X.ndim != 2 or X.shape[1] != 3 or not np.all(np.isfinite(X)):
+        raise InputError("XYZ must be a finite (k, 3) array")
+    cams, rt = _rs_frames(eo0, rates, X.shape[0])
+    idx = np.zeros(X.shape[0], np.intp) if image is None else np.asarray(image, dtype=np.intp)
+    if idx.shape != (X.shape[0],) or idx.min(initial=0) < 0 or idx.max(initial=0) >= cams.shape[0]:
+        raise InputError("image must give a valid image index for every point")
+    x = np.zeros(X.shape[0])
+    for it in range(1, max_iter + 1):
+        e = cams[idx] + rt[idx] * x[:, None]
+        A = rotation_matrix(e[:, 3], e[:, 4], e[:, 5], order)
+        star = np.einsum("kji,kj->ki", A, X - e[:, :3])
+        if np.any(star[:, 2] >= 0):
+            raise DegenerateGeometryError(
+                f"points {np.flatnonzero(star[:, 2] >= 0)[:10].tolist()} are not in front of the image line (z* ≥ 0)")
+        xy = np.column_stack([io.x0 - io.f * star[:, 0] / star[:, 2], io.y0 - io.f * star[:, 1] / star[:, 2]])
+        step = np.abs(xy[:, 0] - x)
+        x = xy[:, 0]
+        if not np.all(np.isfinite(x)):
+            break
+        if np.all(step < tol):
+            return (xy, it) if return_iterations else xy
+    bad = np.flatnonzero(~(step < tol))[:10].tolist()
+    raise ConvergenceError(
+        f"rolling-shutter projection (3.9.1)/(3.9.2) did not converge in {max_iter} iterations for points {bad} "
+        f"(last |Δx| up to {np.nanmax(step):.3g} mm): the image moves too fast during the readout for the "
+        "fixed-point iteration — are the rates k₁…k₆ per mm of x and realistic?")
+
+
+def rolling_shutter_correction_equations(image, point, xy, frames, points, io: InteriorOrientation,
+                                         order: str = "kaw", model: str = "full") -> BlockCorrectionEquations:
+    """Correction equations of rolling-shutter images: 12 (``"full"``) or 9 (``"linear"``) unknowns per image.
+
+    ``frames`` rows are (X_S0, Y_S0, Z_S0, ω₀, α₀, κ₀, k₁, …, k₆) or the first 9 of them. The
+    measured x of each observation fixes its line (3.9.2). Derivatives from
+    :func:`photolib.derivations.rolling_shutter_model`.
+    """
+    q = {"full": 12, "linear": 9}.get(model)
+    if q is None:
+        raise InputError(f"model must be 'full' or 'linear', got {model!r}")
+    fr = np.zeros((frames.shape[0], 12))
+    fr[:, :q] = frames
+    c, X = fr[image], points[point]
+    e = c[:, :6] + c[:, 6:] * xy[:, :1]
+    _zstar_check(e, X, np.arange(image.size), np.arange(image.size), order)
+    F, J = getattr(_bundle_generated, f"rolling_{order}")(*[c[:, i] for i in range(12)], X[:, 0], X[:, 1], X[:, 2],
+                                                          xy[:, 0], xy[:, 1], io.f, io.x0, io.y0)
+    J = J.reshape(2, 15, -1).transpose(2, 0, 1)
+    return BlockCorrectionEquations(frame=image, point=point, B1=J[:, :, :q], B2=J[:, :, 12:], L=F.T, P=1.0)
+
+
+@dataclass
+class RollingShutterResult:
+    """Adjusted rolling-shutter block (§3.9)."""
+
+    cameras: np.ndarray          # (n, 6) EO at the line x = 0
+    rates: np.ndarray            # (n, 6) k₁ … k₆ (zeros for the angular rates in the linear model)
+    points: np.ndarray
+    mu: float
+    dof: int
+    cameras_std: np.ndarray | None
+    rates_std: np.ndarray | None
+    points_std: np.ndarray | None
+    residuals: np.ndarray
+    iterations: int
+    model: str
+    n_unknowns: int
+
+
+def rolling_shutter_bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, *, rates0=None,
+                                      model: str = "full", control=None, control_sigma=None, gnss=None,
+                                      gnss_sigma=0.05, sigma_image: float = 0.005, order: str = "kaw",
+                                      max_iter: int = 30, covariance: bool = True) -> RollingShutterResult:
+    """Bundle adjustment of rolling-shutter images, §3.9: (3.9.1) with (3.9.2).
+
+    Per image 12 unknowns (EO at the line x = 0 and the six rates k₁…k₆) or, with
+    ``model="linear"``, 9 (the angles held constant over the readout). GNSS centres, if given,
+    observe X_S0, Y_S0, Z_S0. Other parameters as in :func:`bundle_adjustment`.
+    """
+    q = {"full": 12, "linear": 9}.get(model)
+    if q is None:
+        raise InputError(f"model must be 'full' (12 unknowns per image) or 'linear' (9), got {model!r}")
+    b = _prepare_block(observations, cameras0, points0, io, control, control_sigma, gnss, gnss_sigma, None,
+                       np.radians(0.005), sigma_image, order)
+    cams, rt = _rs_frames(b.cams, rates0, 0)
+    frames0 = np.hstack([cams, rt])[:, :q]
+    per_image = np.bincount(b.image, minlength=b.n)
+    if np.any(per_image < q // 2 + 1):
+        raise InputError(f"images {np.flatnonzero(per_image < q // 2 + 1)[:10].tolist()} have too few points for "
+                         f"{q} unknowns per image (need at least {q // 2 + 1})")
+    frame_obs = None
+    if b.frame_obs is not None:
+        fv, fw = np.full((b.n, q), np.nan), np.zeros((b.n, q))
+        fv[:, :3], fw[:, :3] = b.frame_obs[0][:, :3], b.frame_obs[1][:, :3]
+        frame_obs = (fv, fw)
+
+    def linearize(frames, points):
+        return rolling_shutter_correction_equations(b.image, b.point, b.xy, frames, points, io, order, model)
+
+    tol = [1e-5] * 3 + [1e-9] * 3 + [1e-7] * 3 + [1e-11] * 3
+    try:
+        adj = block_gauss_newton(linearize, frames0, b.pts, frame_observations=frame_obs,
+                                 point_observations=b.point_obs, free_points=b.free_points, tol_frames=tol[:q],
+                                 tol_points=1e-5, max_iter=max_iter, covariance=covariance)
+    except DegenerateGeometryError as exc:
+        if "not in front" in str(exc):
+            raise ConvergenceError(f"the iteration diverged: {exc}") from exc
+        raise
+    full = np.zeros((b.n, 12))
+    full[:, :q] = adj.frames
+    std = None
+    if adj.frames_std is not None:
+        std = np.zeros((b.n, 12))
+        std[:, :q] = adj.frames_std
+    return RollingShutterResult(cameras=full[:, :6], rates=full[:, 6:], points=adj.points, mu=adj.mu, dof=adj.dof,
+                                cameras_std=None if std is None else std[:, :6],
+                                rates_std=None if std is None else std[:, 6:], points_std=adj.points_std,
+                                residuals=adj.residuals, iterations=adj.iterations, model=model,
+                                n_unknowns=q * b.n + 3 * int(b.free_points.sum()))
+
+
 def generated_source() -> str:
     """Text of ``photolib/_bundle_generated.py``, printed from the sympy models (imports sympy)."""
-    from .derivations import bundle_collinearity_model, numpy_source
+    from .derivations import (bundle_collinearity_model, numpy_source, rig_collinearity_model, rolling_shutter_model,
+                              self_calibration_model)
     parts = ['"""GENERATED by ``python -m photolib.bundle`` from photolib.derivations.bundle_collinearity_model',
              "— do not edit. Residuals (3.5.1) and Jacobian (3.5.2) of the bundle model, one function per",
-             'rotation sequence; see :func:`photolib.derivations.numpy_source`."""', "", "import numpy", ""]
+             "rotation sequence; then the Chapter 3 extensions: self-calibration (3.6.1)/(3.6.3), rig cameras",
+             '(3.8.13)/(3.8.15), rolling shutter (3.9.1)/(3.9.2); see :func:`photolib.derivations.numpy_source`."""',
+             "", "import numpy", ""]
     for order in ("kaw", "wak"):
         parts += ["", numpy_source(bundle_collinearity_model(order), f"collinearity_{order}")]
+    for model, name in ((self_calibration_model, "selfcal"), (rig_collinearity_model, "rig"),
+                        (rolling_shutter_model, "rolling")):
+        for order in ("kaw", "wak"):
+            parts += ["", numpy_source(model(order), f"{name}_{order}")]
     return "\n".join(parts)
 
 

@@ -24,6 +24,7 @@ a-posteriori accuracy
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
@@ -305,18 +306,36 @@ class BlockSolution:
 
 
 def _block_sum(index, blocks, n):
-    """Σ of ``blocks[k]`` over k with ``index[k] == i``, for i in range(n) → (n, *block shape)."""
-    shape = blocks.shape[1:]
-    size = int(np.prod(shape))
-    flat = (index[:, None] * size + np.arange(size)).ravel()
-    return np.bincount(flat, weights=blocks.reshape(-1), minlength=n * size).reshape((n,) + shape)
+    """Σ of ``blocks[k]`` over k with ``index[k] == i``, for i in range(n) → (n, *block shape).
+
+    One product with the n×m "summing matrix" (a 1 in row index[k], column k): faster and far
+    lighter than a bincount over m·(block size) flat indices.
+    """
+    from scipy import sparse
+    m = index.shape[0]
+    summing = sparse.csr_matrix((np.ones(m), (index, np.arange(m))), shape=(n, m))
+    return np.asarray(summing @ blocks.reshape(m, -1)).reshape((n,) + blocks.shape[1:])
+
+
+def _normal_blocks(index, A, B, n, chunk: int = 16384):
+    """Σ_k A[k]ᵀ·B[k] over the observations k of each group i = index[k] → (n, a, b), (3.5.8).
+
+    With A = P·B₁, B = [B₁ | L] (the correction equations bordered by their free terms) and the
+    image of each observation as index, the result is [N₁₁ | B₁ᵀPL]. Observations are taken in
+    chunks, so the m per-observation products are never held at once.
+    """
+    out = np.zeros((n, A.shape[2], B.shape[2]))
+    for start in range(0, index.shape[0], chunk):
+        part = slice(start, start + chunk)
+        out += _block_sum(index[part], np.einsum("kri,krj->kij", A[part], B[part]), n)
+    return out
 
 
 def _block_diagonal(blocks):
-    """A scipy.sparse block-diagonal matrix from an (n, b, b) stack."""
+    """A scipy.sparse block-diagonal matrix (BSR) from an (n, b, b) stack."""
     from scipy import sparse
     n, b, _ = blocks.shape
-    return sparse.bsr_matrix((blocks, np.arange(n), np.arange(n + 1)), shape=(n * b, n * b)).tocsr()
+    return sparse.bsr_matrix((blocks, np.arange(n), np.arange(n + 1)), shape=(n * b, n * b))
 
 
 def _invert_3x3_blocks(blocks, rcond):
@@ -324,58 +343,138 @@ def _invert_3x3_blocks(blocks, rcond):
 
     Each block is scaled to unit diagonal first; a block whose smallest eigenvalue is below
     ``rcond`` (rays intersecting at a grazing angle, a point not determined) raises
-    :class:`DegenerateGeometryError` naming the points.
+    :class:`DegenerateGeometryError` naming the points. With unit diagonal the other two
+    eigenvalues have λ₂·λ₃ ≤ (3/2)², so λ_min ≥ 4·det/9: eigenvalues are computed only for the
+    few blocks whose determinant does not already settle it.
     """
     d = np.sqrt(np.einsum("kii->ki", blocks))
     if np.any(~(d > 0)):
         bad = np.flatnonzero(~np.all(d > 0, axis=1))
         raise DegenerateGeometryError(f"points {bad[:10].tolist()} are not determined by any observation")
     scaled = blocks / (d[:, :, None] * d[:, None, :])
-    low = np.linalg.eigvalsh(scaled)[:, 0]
-    if np.any(low < rcond):
-        bad = np.flatnonzero(low < rcond)
+    suspect = np.flatnonzero(~(4.0 * np.linalg.det(scaled) / 9.0 >= rcond))
+    low = np.linalg.eigvalsh(scaled[suspect])[:, 0] if suspect.size else np.zeros(0)
+    if np.any(~(low >= rcond)):
+        bad = suspect[~(low >= rcond)]
         raise DegenerateGeometryError(
             f"points {bad[:10].tolist()} are not determined: their rays are (nearly) parallel "
-            f"(smallest scaled eigenvalue {low.min():.1e})")
+            f"(smallest scaled eigenvalue {np.nanmin(low):.1e})")
     return np.linalg.inv(scaled) / (d[:, :, None] * d[:, None, :])
 
 
-class _Factorisation:
-    """Cholesky-like factorisation of the (scaled) reduced matrix (3.5.16), dense or sparse."""
+def _band_ordering(S):
+    """A numbering of the unknowns that keeps the non-zeros of a symmetric sparse S near the diagonal.
 
-    def __init__(self, S, rcond, dense_limit):
-        import scipy.linalg
+    Two candidates, the narrower band wins: the given numbering (images numbered strip by strip
+    give a half-bandwidth of about one strip plus the forward overlap, fig. 3.12) and the reverse
+    Cuthill–McKee numbering (breadth-first from a peripheral unknown, which repairs an arbitrary
+    numbering). A block-sparse (BSR) S — q×q blocks, one per pair of images — is renumbered image
+    by image, on the graph of its blocks.
+
+    Returns
+    -------
+    order : int array (n,)
+        ``S[order][:, order]`` is the renumbered matrix.
+    bandwidth : int
+        A half-bandwidth b of it (S_ij = 0 for |i − j| > b); exact for q = 1, at most q − 1 too
+        wide for blocks.
+    """
+    from scipy import sparse
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+    if sparse.issparse(S) and S.format == "bsr":
+        q = S.blocksize[0]
+        graph = sparse.csr_matrix((np.ones(S.indices.size), S.indices, S.indptr), shape=(S.shape[0] // q,) * 2)
+    else:
+        q, graph = 1, sparse.csr_matrix(S)
+    rcm = reverse_cuthill_mckee(graph, symmetric_mode=True)
+    position = np.empty(rcm.size, np.intp)
+    position[rcm] = np.arange(rcm.size)
+    graph = graph.tocoo()
+    natural = int(np.abs(graph.row - graph.col).max(initial=0))
+    reordered = int(np.abs(position[graph.row] - position[graph.col]).max(initial=0))
+    order, width = (rcm, reordered) if reordered < natural else (np.arange(rcm.size), natural)
+    return (q * order[:, None] + np.arange(q)).ravel(), q * width + q - 1
+
+
+def _blas_on_one_thread():
+    """A context in which BLAS and LAPACK run on one thread — if threadpoolctl is installed, else a no-op.
+
+    The band Cholesky of :class:`_Factorisation` works on panels a few hundred unknowns wide: a
+    multithreaded BLAS gains nothing there, and when other processes hold the cores its threads
+    wait for each other, which made the factorisation up to 40× slower on a busy machine
+    (benchmarks/README.md). Setting OPENBLAS_NUM_THREADS=1 has the same effect without threadpoolctl.
+    """
+    import contextlib
+    controller = _blas_controller()
+    return contextlib.nullcontext() if controller is None else controller.limit(limits=1, user_api="blas")
+
+
+@functools.lru_cache(maxsize=None)
+def _blas_controller():
+    """threadpoolctl's view of the loaded BLAS libraries (found once; None without threadpoolctl)."""
+    try:
+        from threadpoolctl import ThreadpoolController
+    except ImportError:
+        return None
+    import scipy.linalg  # noqa: F401 — make sure scipy's BLAS is loaded before the libraries are listed
+    return ThreadpoolController()
+
+
+class _Factorisation:
+    """Cholesky factorisation S = L·Lᵀ of the reduced matrix (3.5.16), as a band matrix.
+
+    S is scaled to unit diagonal, D·S·D with D = diag(S)^−½, so that its pivots are comparable;
+    the unknowns are renumbered by :func:`_band_ordering`; LAPACK's band Cholesky (``dpbtrf``)
+    then factorises the lower band in place — n·(b + 1) numbers for a half-bandwidth b, the only
+    large array (a general sparse LU would keep both L and U). An aerial block keeps b at about
+    one strip of images whatever the number of strips. Systems of up to ``dense_limit`` unknowns
+    use the dense Cholesky (``dpotrf``).
+
+    Every pivot of the scaled matrix is an L_ii² in (0, 1]; one ≤ ``rcond`` (or a failed
+    factorisation) means S is singular — a datum defect — and raises DegenerateGeometryError.
+    """
+
+    def __init__(self, S, rcond, dense_limit=0, chunk: int = 1 << 17):
         from scipy import sparse
-        from scipy.sparse import linalg as spla
+        from scipy.linalg import lapack
         n = S.shape[0]
         d = np.sqrt(S.diagonal())
         if np.any(~(d > 0)):
             raise DegenerateGeometryError(
                 f"image unknowns {np.flatnonzero(~(d > 0))[:10].tolist()} are not determined by any observation")
-        self.scale = 1.0 / d
-        Ds = sparse.diags(self.scale)
-        Ss = (Ds @ S @ Ds)
         self.n = n
+        self.scale = 1.0 / d
         self.dense = n <= dense_limit
         if self.dense:
-            Sd = Ss.toarray()
-            try:
-                self.cho = scipy.linalg.cho_factor(Sd, lower=True, check_finite=False)
-            except np.linalg.LinAlgError:
-                pivots = np.zeros(1)
-            else:
-                pivots = np.diag(self.cho[0]) ** 2
+            self.order, b = np.arange(n), n - 1
         else:
-            # SuperLU in symmetric mode (no row pivoting, minimum-degree ordering of Sᵀ+S):
-            # for a positive definite S this is a sparse Cholesky factorisation up to scaling.
-            try:
-                self.lu = spla.splu(Ss.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                                    options={"SymmetricMode": True})
-            except RuntimeError:
-                pivots = np.zeros(1)
+            self.order, b = _band_ordering(S)
+        position = np.empty(n, np.intp)
+        position[self.order] = np.arange(n)
+        # lower band of the scaled, renumbered S in LAPACK storage: band[i − j, j] = S_ij, i ≥ j
+        # (filled in chunks of the non-zeros, so no full-size index arrays are held)
+        S = sparse.coo_matrix(S)
+        band = np.zeros((b + 1, n), order="F")         # Fortran order: LAPACK works in it without a copy
+        for start in range(0, S.nnz, chunk):
+            part = slice(start, start + chunk)
+            row, col = S.row[part], S.col[part]
+            i, j = position[row], position[col]
+            lower = i >= j
+            np.add.at(band, (i[lower] - j[lower], j[lower]),
+                      (S.data[part] * self.scale[row] * self.scale[col])[lower])
+        del S
+        with _blas_on_one_thread():
+            if self.dense:       # the same numbers as a full lower triangle (row i − j, column j → i, j)
+                full = np.zeros((n, n), order="F")
+                ii, jj = np.tril_indices(n)
+                full[ii, jj] = band[ii - jj, jj]
+                self.factor, info = lapack.dpotrf(full, lower=1, clean=1, overwrite_a=1)
+                pivots = np.diag(self.factor) ** 2
             else:
-                pivots = self.lu.U.diagonal()
-        self.min_pivot = float(np.min(pivots)) if pivots.size else 0.0
+                self.factor, info = lapack.dpbtrf(band, lower=1, overwrite_ab=1)
+                pivots = self.factor[0] ** 2
+        # info > 0: the leading minor of that order is not positive definite
+        self.min_pivot = 0.0 if info != 0 else float(pivots.min(initial=np.inf))
         if not self.min_pivot > rcond:
             raise DegenerateGeometryError(
                 "the reduced normal matrix (3.5.16) is singular (smallest scaled pivot "
@@ -383,15 +482,18 @@ class _Factorisation:
                 "(fixed or weighted control points, GNSS centres) to fix its position, rotation and scale")
 
     def solve(self, rhs):
-        import scipy.linalg
-        b = rhs * (self.scale if rhs.ndim == 1 else self.scale[:, None])
-        x = scipy.linalg.cho_solve(self.cho, b, check_finite=False) if self.dense else self.lu.solve(b)
-        return x * (self.scale if rhs.ndim == 1 else self.scale[:, None])
+        """S⁻¹·rhs for a vector or a matrix of right-hand sides."""
+        from scipy.linalg import cho_solve, cho_solve_banded
+        scale = self.scale if rhs.ndim == 1 else self.scale[:, None]
+        b = (rhs * scale)[self.order]
+        y = cho_solve((self.factor, True), b, check_finite=False) if self.dense else \
+            cho_solve_banded((self.factor, True), b, check_finite=False)
+        x = np.empty_like(y)
+        x[self.order] = y
+        return x * scale
 
     def inverse(self, chunk: int = 512):
-        """S⁻¹ as a dense array (column chunks for the sparse factorisation)."""
-        if self.dense:
-            return self.solve(np.eye(self.n))
+        """S⁻¹ as a dense array (solved for column chunks of the identity)."""
         out = np.empty((self.n, self.n))
         for start in range(0, self.n, chunk):
             stop = min(start + chunk, self.n)
@@ -420,10 +522,12 @@ def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_
                                  dense_limit: int = 0) -> BlockSolution:
     """One linear step of a block adjustment by the reduction (3.5.13)–(3.5.16).
 
-    Builds N₁₁ (6×6 blocks), N₂₂ (3×3 blocks) and the sparse N₁₂ from the correction equations,
-    eliminates the points (3.5.16) with vectorised 3×3 block inverses, factorises the reduced
-    matrix of the image unknowns (dense Cholesky for small blocks, sparse symmetric LU otherwise)
-    and recovers the points by back-substitution δ₂ = N₂₂⁻¹(L₂ᴺ − N₁₂ᵀδ₁) (second row of (3.5.14)).
+    Builds N₁₁ (6×6 blocks), N₂₂ (3×3 blocks) and the block-sparse N₁₂ from the correction
+    equations, eliminates the points (3.5.16) with vectorised 3×3 block inverses, factorises the
+    reduced matrix of the image unknowns by a band Cholesky (:class:`_Factorisation`: the images
+    renumbered for a narrow band, LAPACK ``dpbtrf``) and recovers the points by back-substitution
+    δ₂ = N₂₂⁻¹(L₂ᴺ − N₁₂ᵀδ₁) (second row of (3.5.14)). ``timings`` of the result holds the seconds
+    spent on the normal equations, the reduction, the factorisation and the back-substitution.
 
     Parameters
     ----------
@@ -444,8 +548,8 @@ def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_
         Smallest acceptable pivot of the scaled reduced matrix; below it the block is declared
         singular (datum defect) with :class:`DegenerateGeometryError`.
     dense_limit : int
-        Reduced systems up to this size are factorised densely (default 0: always sparse; the
-        dense path was much slower in the benchmark once BLAS threads compete for the cores).
+        Reduced systems of up to this many unknowns are factorised by the dense Cholesky
+        (default 0: always the band Cholesky, which is as fast for small blocks).
     """
     import time
     from scipy import sparse
@@ -456,17 +560,21 @@ def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_
     P = np.broadcast_to(np.asarray(eq.P, dtype=float), (m, r))
     free_frames = np.ones(n_frames, bool) if free_frames is None else np.asarray(free_frames, bool)
     free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
-    on_free = free_points[eq.point]
 
-    # normal-equation blocks (3.5.8) in the convention N·δ = Lᴺ of (3.5.13)
-    PB1 = P[:, :, None] * eq.B1
-    PB2 = P[on_free, :, None] * eq.B2[on_free]
-    N11 = _block_sum(eq.frame, np.einsum("kri,krj->kij", PB1, eq.B1), n_frames)
-    L1 = -_block_sum(eq.frame, np.einsum("kri,kr->ki", PB1, eq.L), n_frames)
-    pts = eq.point[on_free]
-    N22 = _block_sum(pts, np.einsum("kri,krj->kij", PB2, eq.B2[on_free]), n_points)
-    L2 = -_block_sum(pts, np.einsum("kri,kr->ki", PB2, eq.L[on_free]), n_points)
-    W = np.einsum("kri,krj->kij", PB1[on_free], eq.B2[on_free])          # the 6×3 blocks of N₁₂
+    # normal-equation blocks (3.5.8) in the convention N·δ = Lᴺ of (3.5.13). The correction
+    # equations are bordered by their free terms, [B | L], so that one pass gives N and −Lᴺ.
+    # (The blocks of fixed points and images are computed too and replaced below.)
+    PB1, PB2 = P[:, :, None] * eq.B1, P[:, :, None] * eq.B2
+    NL1 = _normal_blocks(eq.frame, PB1, np.concatenate([eq.B1, eq.L[:, :, None]], axis=2), n_frames)
+    NL2 = _normal_blocks(eq.point, PB2, np.concatenate([eq.B2, eq.L[:, :, None]], axis=2), n_points)
+    N11, L1 = NL1[:, :, :q], -NL1[:, :, q]
+    N22, L2 = NL2[:, :, :3], -NL2[:, :, 3]
+    # N₁₂: one q×3 block per observation of a free point in a free image (3.5.3), sorted by image
+    coupled = np.flatnonzero(free_points[eq.point] & free_frames[eq.frame])
+    coupled = coupled[np.argsort(eq.frame[coupled], kind="stable")]
+    pts, frm = eq.point[coupled], eq.frame[coupled]
+    W = np.einsum("kri,krj->kij", PB1, eq.B2)[coupled]
+    del PB1, PB2
     for prior, N, Lv in ((frame_prior, N11, L1), (point_prior, N22, L2)):
         if prior is not None:
             l, p = (np.asarray(a, dtype=float) for a in prior)
@@ -478,33 +586,35 @@ def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_
     L2[~free_points] = 0.0
     N11[~free_frames] = np.eye(q)
     L1[~free_frames] = 0.0
-    on_free_frame = free_frames[eq.frame[on_free]]
-    frm = eq.frame[on_free]
-    W = W * on_free_frame[:, None, None]
     timings["normal equations"] = time.perf_counter() - t0
 
-    # reduction (3.5.16): S = N₁₁ − N₁₂N₂₂⁻¹N₁₂ᵀ, s = L₁ᴺ − N₁₂N₂₂⁻¹L₂ᴺ
+    # reduction (3.5.16): S = N₁₁ − N₁₂N₂₂⁻¹N₁₂ᵀ, s = L₁ᴺ − N₁₂N₂₂⁻¹L₂ᴺ. N₁₂ is block-sparse (BSR):
+    # block row = image, block column = point, one q×3 block W per observation; N₁₂N₂₂⁻¹ has the
+    # same blocks multiplied by the point's N₂₂⁻¹, and the product with N₁₂ᵀ leaves one q×q block
+    # per pair of images with a common point (fig. 3.12).
     t = time.perf_counter()
     iN22 = _invert_3x3_blocks(N22, rcond)
-    rows = (frm[:, None, None] * q + np.arange(q)[None, :, None]) * np.ones((1, 1, 3), int)
-    cols = (pts[:, None, None] * 3 + np.arange(3)[None, None, :]) * np.ones((1, q, 1), int)
-    N12 = sparse.csr_matrix((W.ravel(), (rows.ravel(), cols.ravel())), shape=(n_frames * q, n_points * 3))
-    iN22_sp = _block_diagonal(iN22)
-    Y = N12 @ iN22_sp                                                       # N₁₂N₂₂⁻¹
+    first = np.searchsorted(frm, np.arange(n_frames + 1))                 # block-row pointers
+    N12 = sparse.bsr_matrix((W, pts, first), shape=(n_frames * q, n_points * 3))
+    Y = sparse.bsr_matrix((W @ iN22[pts], pts, first), shape=N12.shape)  # N₁₂N₂₂⁻¹
     S = _block_diagonal(N11) - Y @ N12.T
     s = L1.ravel() - Y @ L2.ravel()
+    del Y
     keep = np.repeat(free_frames, q)
-    S = S[keep][:, keep]
+    if not keep.all():
+        S = S.tocsr()[keep][:, keep]
     timings["reduction"] = time.perf_counter() - t
 
     t = time.perf_counter()
-    fac = _Factorisation(S.tocsr(), rcond, dense_limit)
+    fac = _Factorisation(S, rcond, dense_limit)
+    del S
     timings["factorisation"] = time.perf_counter() - t
 
     t = time.perf_counter()
     d1 = np.zeros(n_frames * q)
     d1[keep] = fac.solve(s[keep])
-    d2 = np.einsum("kij,kj->ki", iN22, L2 - (N12.T @ d1).reshape(n_points, 3))   # (3.5.14), row 2
+    N21d1 = _block_sum(pts, np.einsum("kij,ki->kj", W, d1.reshape(n_frames, q)[frm]), n_points)   # N₁₂ᵀδ₁
+    d2 = np.einsum("kij,kj->ki", iN22, L2 - N21d1)                        # (3.5.14), row 2
     d2[~free_points] = 0.0
     timings["back-substitution"] = time.perf_counter() - t
 
@@ -706,3 +816,314 @@ def block_equations_dense(eq: BlockCorrectionEquations, n_frames: int, n_points:
         B[rows[on], (q * n_frames + 3 * column[eq.point[on]] + i)[:, None]] = eq.B2[on, :, i]
     P = np.broadcast_to(np.asarray(eq.P, dtype=float), (m, r)).ravel()
     return B, eq.L.ravel(), P
+
+
+# --- Chapter 3 (§3.6, §3.8): block adjustment with block-wide (global) unknowns -------------------
+@dataclass
+class GlobalBlockCorrectionEquations(BlockCorrectionEquations):
+    """Block correction equations with a third group: unknowns shared by the whole block.
+
+    Observation k (r rows):  B1[k]·δ₁[frame[k]] + B2[k]·δ₂[point[k]] + B3[k]·δ₃ + L[k] = V[k].
+    δ₃ holds g block-wide unknowns: the interior orientation and distortion coefficients of a
+    self-calibrating bundle (3.6.3), the mounting elements of a camera rig (3.8.15).
+
+    Attributes
+    ----------
+    B3 : array (m, r, g)
+        Derivatives by the global unknowns (zeros where an observation does not depend on them).
+    """
+
+    B3: np.ndarray | None = None
+
+
+@dataclass
+class GlobalBlockSolution:
+    """One solved linear step with global unknowns, and (optionally) cofactor blocks."""
+
+    delta1: np.ndarray                  # (n_frames, q)
+    delta2: np.ndarray                  # (n_points, 3)
+    delta3: np.ndarray                  # (g,)
+    Q1: np.ndarray | None = None        # (n_frames, q, q) diagonal blocks of N⁻¹ (images)
+    Q2: np.ndarray | None = None        # (n_points, 3, 3) diagonal blocks of N⁻¹ (points)
+    Q3: np.ndarray | None = None        # (g, g) cofactors of the global unknowns
+    Q13: np.ndarray | None = None       # (n_frames, q, g) image × global cofactors
+    Q23: np.ndarray | None = None       # (n_points, 3, g) point × global cofactors
+
+
+def solve_block_normal_equations_global(eq: GlobalBlockCorrectionEquations, n_frames: int, n_points: int, *,
+                                        frame_prior=None, point_prior=None, global_prior=None, free_points=None,
+                                        covariance: bool = False, rcond: float = 1e-12, global_names=(),
+                                        frame_names=()) -> GlobalBlockSolution:
+    """One linear step of a block adjustment with block-wide unknowns, by successive reduction.
+
+    The points are eliminated exactly as in (3.5.16) (3×3 block inverses); the global unknowns
+    join the reduced system, which is then solved in two stages: the image unknowns are
+    eliminated in their turn, leaving the small g×g system of the global unknowns
+
+        G = S₃₃ − S₃₁S₁₁⁻¹S₁₃,   G·δ₃ = s₃ − S₃₁S₁₁⁻¹s₁,   δ₁ = S₁₁⁻¹(s₁ − S₁₃δ₃),
+
+    and δ₂ follows by back-substitution as in (3.5.14). G is the information the block
+    geometry carries about the global unknowns once every exterior orientation and point is
+    free to absorb what it can: a (near-)zero eigenvalue of G scaled to unit diagonal means the
+    block cannot separate them from the other unknowns — :class:`DegenerateGeometryError`
+    names the global unknowns of that combination and the image unknowns that absorb it.
+
+    Parameters
+    ----------
+    eq : GlobalBlockCorrectionEquations
+    n_frames, n_points : int
+    frame_prior, point_prior, global_prior : (l, p) pairs, optional
+        Direct observations δ + l = v with weights p (0: none), shapes (n_frames, q), (n_points, 3), (g,).
+    free_points : bool array, optional
+        False holds a point fixed (3.5.3).
+    covariance : bool
+        Also return cofactor blocks: Q₁ (image diagonal blocks), Q₂ (point blocks), Q₃ (g×g),
+        Q₁₃ and Q₂₃ (cross-cofactors with the globals) for the correlations of §3.6.
+    global_names, frame_names : sequences of str, optional
+        Names used in the error message of a singular global block.
+    """
+    from scipy import sparse
+
+    m, r, q = eq.B1.shape
+    g = 0 if eq.B3 is None else eq.B3.shape[2]
+    B3 = np.zeros((m, r, 0)) if eq.B3 is None else eq.B3
+    P = np.broadcast_to(np.asarray(eq.P, dtype=float), (m, r))
+    free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
+    on_free = free_points[eq.point]
+    pts, frm = eq.point[on_free], eq.frame[on_free]
+
+    # normal-equation blocks, convention N·δ = Lᴺ of (3.5.13)
+    PB1 = P[:, :, None] * eq.B1
+    PB3 = P[:, :, None] * B3
+    PB2 = P[on_free, :, None] * eq.B2[on_free]
+    N11 = _block_sum(eq.frame, np.einsum("kri,krj->kij", PB1, eq.B1), n_frames)
+    L1 = -_block_sum(eq.frame, np.einsum("kri,kr->ki", PB1, eq.L), n_frames)
+    N22 = _block_sum(pts, np.einsum("kri,krj->kij", PB2, eq.B2[on_free]), n_points)
+    L2 = -_block_sum(pts, np.einsum("kri,kr->ki", PB2, eq.L[on_free]), n_points)
+    N33 = np.einsum("kri,krj->ij", PB3, B3)
+    L3 = -np.einsum("kri,kr->i", PB3, eq.L)
+    N13 = _block_sum(eq.frame, np.einsum("kri,krj->kij", PB1, B3), n_frames).reshape(n_frames * q, g)
+    W1 = np.einsum("kri,krj->kij", PB1[on_free], eq.B2[on_free])          # q×3 blocks of N₁₂
+    W3 = np.einsum("kri,krj->kij", PB3[on_free], eq.B2[on_free])          # g×3 blocks of N₃₂
+    for prior, N, Lv in ((frame_prior, N11, L1), (point_prior, N22, L2)):
+        if prior is not None:
+            l, p = (np.asarray(a, dtype=float) for a in prior)
+            idx = np.arange(p.shape[1])
+            N[:, idx, idx] += p
+            Lv -= p * l
+    if global_prior is not None and g:
+        l, p = (np.asarray(a, dtype=float).reshape(g) for a in global_prior)
+        N33[np.arange(g), np.arange(g)] += p
+        L3 -= p * l
+    N22[~free_points] = np.eye(3)
+    L2[~free_points] = 0.0
+
+    # eliminate the points (3.5.16): C = [N₁₂; N₃₂] (sparse, (q·n + g) × 3k)
+    iN22 = _invert_3x3_blocks(N22, rcond)
+    nq = n_frames * q
+    rows1 = (frm[:, None, None] * q + np.arange(q)[None, :, None]) * np.ones((1, 1, 3), int)
+    cols1 = (pts[:, None, None] * 3 + np.arange(3)[None, None, :]) * np.ones((1, q, 1), int)
+    rows3 = (nq + np.arange(g)[None, :, None]) * np.ones((pts.size, 1, 3), int)
+    cols3 = (pts[:, None, None] * 3 + np.arange(3)[None, None, :]) * np.ones((1, g, 1), int)
+    C = sparse.csr_matrix((np.concatenate([W1.ravel(), W3.ravel()]),
+                           (np.concatenate([rows1.ravel(), rows3.ravel()]),
+                            np.concatenate([cols1.ravel(), cols3.ravel()]))), shape=(nq + g, n_points * 3))
+    Y = C @ _block_diagonal(iN22)
+    S = (Y @ C.T).tocsr()
+    s = np.concatenate([L1.ravel(), L3]) - Y @ L2.ravel()
+    S11 = _block_diagonal(N11) - S[:nq][:, :nq]
+    S13 = N13 - S[:nq][:, nq:].toarray()
+    S33 = N33 - S[nq:][:, nq:].toarray()
+
+    # eliminate the images, leaving the g×g system of the globals
+    fac = _Factorisation(S11.tocsr(), rcond, 0)
+    Zg = fac.solve(S13) if g else np.zeros((nq, 0))                      # S₁₁⁻¹S₁₃
+    G = S33 - S13.T @ Zg
+    if g:
+        d = np.sqrt(np.clip(np.diag(G), 0, None))
+        d_ref = np.sqrt(np.diag(S33))
+        weak = ~(d > 1e-7 * np.maximum(d_ref, 1e-300))
+        Gs = G / np.outer(np.where(weak, 1, d), np.where(weak, 1, d))
+        w, U = np.linalg.eigh(Gs)
+        if weak.any() or w[0] < rcond ** 0.5:
+            v = U[:, 0] if not weak.any() else weak.astype(float)
+            names = list(global_names) or [f"global {i}" for i in range(g)]
+            involved = [names[i] for i in np.argsort(-np.abs(v)) if abs(v[i]) > 0.2 * np.abs(v).max()]
+            absorb = -(Zg @ (v / np.where(weak, 1, d)))                   # image corrections that absorb it
+            msg = ""
+            if absorb.size and np.abs(absorb).max() > 0:
+                per = np.sqrt(np.sum(absorb.reshape(n_frames, q) ** 2, axis=0))
+                fn = list(frame_names) or [f"image unknown {i}" for i in range(q)]
+                top = [fn[i] for i in np.argsort(-per) if per[i] > 0.2 * per.max()]
+                msg = f", absorbed by the image unknowns {', '.join(top)}"
+            raise DegenerateGeometryError(
+                f"the block geometry cannot separate the block-wide unknowns {', '.join(involved)} from the "
+                f"other unknowns (smallest scaled eigenvalue of their reduced normal matrix "
+                f"{max(w[0], 0.0):.1e}{msg}); add geometry that distinguishes them — terrain relief, "
+                "different flying heights, convergent or rotated images, GNSS centres — or fix them")
+        iG = np.linalg.inv(G)
+    else:
+        iG = np.zeros((0, 0))
+    s1, s3 = s[:nq], s[nq:]
+    d3 = iG @ (s3 - Zg.T @ s1) if g else np.zeros(0)
+    d1 = fac.solve(s1 - S13 @ d3)
+    dA = np.concatenate([d1, d3])
+    d2 = np.einsum("kij,kj->ki", iN22, L2 - (C.T @ dA).reshape(n_points, 3))
+    d2[~free_points] = 0.0
+    sol = GlobalBlockSolution(d1.reshape(n_frames, q), d2, d3)
+    if covariance:
+        iS11 = fac.inverse()
+        QA = np.empty((nq + g, nq + g))
+        QA[:nq, :nq] = iS11 + Zg @ iG @ Zg.T
+        QA[:nq, nq:] = -Zg @ iG
+        QA[nq:, :nq] = QA[:nq, nq:].T
+        QA[nq:, nq:] = iG
+        sol.Q1 = QA[:nq, :nq].reshape(n_frames, q, n_frames, q)[np.arange(n_frames), :, np.arange(n_frames), :]
+        sol.Q3 = iG
+        sol.Q13 = QA[:nq, nq:].reshape(n_frames, q, g)
+        # Q₂₂ per point = N₂₂⁻¹ + N₂₂⁻¹ CₚᵀQ_A Cₚ N₂₂⁻¹;  Q₂₃ = −N₂₂⁻¹ Cₚᵀ Q_A[:, globals]
+        T = np.zeros((n_points, 3, 3))
+        Csc = C.tocsc()
+        chunk = max(1, int(2e6 // max(nq + g, 1)) // 3)
+        for start in range(0, n_points, chunk):
+            stop = min(start + chunk, n_points)
+            Cd = Csc[:, 3 * start:3 * stop].toarray()
+            Md = QA @ Cd
+            T[start:stop] = np.einsum("ica,icb->cab", Cd.reshape(-1, stop - start, 3), Md.reshape(-1, stop - start, 3))
+        Q2 = iN22 + iN22 @ T @ iN22
+        Q2[~free_points] = 0.0
+        sol.Q2 = Q2
+        Q23 = -np.einsum("kij,kjg->kig", iN22, (C.T @ QA[:, nq:]).reshape(n_points, 3, g))
+        Q23[~free_points] = 0.0
+        sol.Q23 = Q23
+    return sol
+
+
+@dataclass
+class GlobalBlockAdjustment(BlockAdjustment):
+    """Result of :func:`block_gauss_newton_global`: :class:`BlockAdjustment` plus the global unknowns."""
+
+    globals: np.ndarray | None = None          # (g,) adjusted block-wide unknowns
+    globals_std: np.ndarray | None = None      # m_j (3.5.11)
+    Q3: np.ndarray | None = None               # (g, g)
+    Q13: np.ndarray | None = None              # (n_frames, q, g)
+    Q23: np.ndarray | None = None              # (n_points, 3, g)
+    global_residuals: np.ndarray | None = None  # V of direct observations of the globals
+
+
+def block_gauss_newton_global(linearize, frames0, points0, globals0, *, frame_observations=None,
+                              point_observations=None, global_observations=None, free_points=None,
+                              tol_frames=1e-8, tol_points=1e-6, tol_globals=1e-10, max_iter: int = 30,
+                              covariance: bool = False, rcond: float = 1e-12, global_names=(), frame_names=(),
+                              progress=None) -> GlobalBlockAdjustment:
+    """Gauss–Newton iterations of a block adjustment with block-wide unknowns (§3.6, §3.8).
+
+    :func:`block_gauss_newton` with a third group of unknowns shared by all observations; each
+    linear step is :func:`solve_block_normal_equations_global`. ``linearize(frames, points,
+    globals) -> GlobalBlockCorrectionEquations``. Direct observations (values, weights) as in
+    :func:`block_gauss_newton`, with ``global_observations`` of shape (g,).
+    """
+    frames = np.array(frames0, dtype=float)
+    points = np.array(points0, dtype=float)
+    glob = np.array(globals0, dtype=float).reshape(-1)
+    if frames.ndim != 2 or points.ndim != 2 or points.shape[1] != 3:
+        raise InputError(f"approximations must be (n_frames, q) and (n_points, 3), got {frames.shape}, {points.shape}")
+    if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points)) and np.all(np.isfinite(glob))):
+        raise InputError("the approximate values contain NaN or inf")
+    n_frames, q = frames.shape
+    n_points, g = points.shape[0], glob.size
+    free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
+
+    def direct(obs, shape):
+        if obs is None:
+            return None, None
+        values, weights = (np.broadcast_to(np.asarray(a, dtype=float), shape) for a in obs)
+        weights = np.where(np.isfinite(values), weights, 0.0)
+        if np.any(~np.isfinite(weights)) or np.any(weights < 0):
+            raise InputError("weights of the direct observations must be finite and non-negative")
+        return np.where(weights > 0, values, 0.0), weights
+
+    obs = [direct(frame_observations, frames.shape), direct(point_observations, points.shape),
+           direct(global_observations, glob.shape)]
+    tols = [np.broadcast_to(np.asarray(t, dtype=float), (s,)) for t, s in ((tol_frames, q), (tol_points, 3), (tol_globals, g))]
+
+    def priors(values):
+        return [None if w is None else (np.where(w > 0, x - v, 0.0), w) for x, (v, w) in zip(values, obs)]
+
+    def vtpv(eq, pr):
+        return float(np.sum(np.broadcast_to(eq.P, eq.L.shape) * eq.L ** 2)) + \
+            sum(float(np.sum(p[1] * p[0] ** 2)) for p in pr if p is not None)
+
+    n_unknowns = q * n_frames + 3 * int(free_points.sum()) + g
+    m_rows = None
+    history, growth = [], 0
+    for iteration in range(1, max_iter + 1):
+        eq = linearize(frames, points, glob)
+        pr = priors((frames, points, glob))
+        value = vtpv(eq, pr)
+        if not np.isfinite(value):
+            raise ConvergenceError(f"the correction equations became NaN/inf at iteration {iteration}", history)
+        if m_rows is None:
+            m_rows = eq.L.size + sum(int((w > 0).sum()) for _, w in obs if w is not None)
+            if m_rows <= n_unknowns:
+                raise InputError(f"{m_rows} correction equations cannot determine {n_unknowns} unknowns (M ≤ N)")
+        sol = solve_block_normal_equations_global(eq, n_frames, n_points, frame_prior=pr[0], point_prior=pr[1],
+                                                  global_prior=pr[2], free_points=free_points, rcond=rcond,
+                                                  global_names=global_names, frame_names=frame_names)
+        step = np.array([np.abs(sol.delta1).max(initial=0.0), np.abs(sol.delta2).max(initial=0.0),
+                         np.abs(sol.delta3).max(initial=0.0)])
+        record = IterationRecord(iteration, np.empty(0), step, value)
+        history.append(record)
+        if progress is not None:
+            progress(record)
+        if len(history) > 1 and value > history[-2].vtpv * (1 + 1e-9):
+            growth += 1
+            if growth >= 4:
+                raise ConvergenceError(f"diverging: VᵀPV grew in {growth} consecutive iterations", history)
+        else:
+            growth = 0
+        frames, points, glob = frames + sol.delta1, points + sol.delta2, glob + sol.delta3
+        if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points)) and np.all(np.isfinite(glob))):
+            raise ConvergenceError(f"the iteration produced NaN/inf at step {iteration}", history)
+        if all(np.all(np.abs(d) < t) for d, t in zip((sol.delta1, sol.delta2, sol.delta3), tols)):
+            break
+    else:
+        raise ConvergenceError(f"no convergence in {max_iter} iterations: last max |δ| = {step.tolist()}", history)
+
+    eq = linearize(frames, points, glob)
+    pr = priors((frames, points, glob))
+    dof = m_rows - n_unknowns
+    mu = float(np.sqrt(vtpv(eq, pr) / dof))
+    out = GlobalBlockAdjustment(frames=frames, points=points, residuals=eq.L.copy(),
+                                frame_residuals=np.zeros_like(frames) if pr[0] is None else pr[0][0],
+                                point_residuals=np.zeros_like(points) if pr[1] is None else pr[1][0],
+                                mu=mu, dof=dof, frames_std=None, points_std=None, Q1=None, Q2=None,
+                                iterations=len(history), converged=True, history=history, globals=glob,
+                                global_residuals=np.zeros_like(glob) if pr[2] is None else pr[2][0])
+    if covariance:
+        sol = solve_block_normal_equations_global(eq, n_frames, n_points, frame_prior=pr[0], point_prior=pr[1],
+                                                  global_prior=pr[2], free_points=free_points, covariance=True,
+                                                  rcond=rcond, global_names=global_names, frame_names=frame_names)
+        out.Q1, out.Q2, out.Q3, out.Q13, out.Q23 = sol.Q1, sol.Q2, sol.Q3, sol.Q13, sol.Q23
+        out.frames_std = mu * np.sqrt(np.einsum("kii->ki", sol.Q1))
+        out.points_std = mu * np.sqrt(np.einsum("kii->ki", sol.Q2))
+        out.globals_std = mu * np.sqrt(np.diag(sol.Q3))
+    return out
+
+
+def global_block_equations_dense(eq: GlobalBlockCorrectionEquations, n_frames: int, n_points: int,
+                                 free_points=None):
+    """Dense (B, L, P) of :class:`GlobalBlockCorrectionEquations`: columns images | globals | free points.
+
+    The column layout of fig. 3.18 (exterior orientation, mounting elements, tie points); for
+    checks and figures of small blocks only.
+    """
+    B0, L, P = block_equations_dense(eq, n_frames, n_points, free_points)
+    m, r, q = eq.B1.shape
+    g = 0 if eq.B3 is None else eq.B3.shape[2]
+    B = np.zeros((B0.shape[0], B0.shape[1] + g))
+    B[:, :q * n_frames] = B0[:, :q * n_frames]
+    if g:
+        B[:, q * n_frames:q * n_frames + g] = eq.B3.reshape(m * r, g)
+    B[:, q * n_frames + g:] = B0[:, q * n_frames:]
+    return B, L, P
