@@ -40,7 +40,7 @@ from . import derivations
 from .camera import as_points
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
 from .image_pair import intersection_scale
-from .lsq import Adjustment, gauss_newton
+from .lsq import Adjustment, AdjustmentView, gauss_newton
 from .rotation import rot_x, rot_y, rot_z
 
 ANGLE_NAMES = ("alpha1", "omega1", "chi1", "alpha2", "omega2", "chi2")
@@ -174,7 +174,7 @@ def initial_chi(S1, S2) -> float:
 
 # --- the joint adjustment (5) + (9) -------------------------------------------------------------------
 @dataclass
-class GnssOrientation:
+class GnssOrientation(AdjustmentView):
     """The six angles of the pair from (5) and (9), with the adjustment of the engine of §1.8."""
 
     angles: np.ndarray             # α₁, ω₁, χ₁, α₂, ω₂, χ₂ (rad)
@@ -182,14 +182,6 @@ class GnssOrientation:
     adjustment: Adjustment = field(repr=False)
     coplanarity: np.ndarray = field(repr=False, default=None)    # residual φ of the tie points (m·mm²)
     ground: np.ndarray = field(repr=False, default=None)         # (k, 2, 2) (Y) − Y, (X) − X per control & image (m)
-
-    @property
-    def iterations(self) -> int:
-        return self.adjustment.iterations
-
-    @property
-    def history(self) -> list:
-        return self.adjustment.history
 
     def as_dict(self) -> dict:
         return dict(zip(ANGLE_NAMES, map(float, self.angles)))

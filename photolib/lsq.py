@@ -69,6 +69,43 @@ class Adjustment:
         return dict(zip(self.names, self.x))
 
 
+class AdjustmentView:
+    """Mixin for result objects that hold an :class:`Adjustment` as ``self.adjustment``.
+
+    Gives them the a-posteriori accuracy of (1.8.8)–(1.8.10) and the iteration record under
+    the same names as :class:`Adjustment`.
+    """
+
+    @property
+    def mu(self) -> float:
+        """μ, the r.m.s. error of unit weight (1.8.9)."""
+        return self.adjustment.mu
+
+    @property
+    def std(self) -> np.ndarray:
+        """m_j = μ√Q_jj (1.8.8), in the units of the unknowns."""
+        return self.adjustment.std
+
+    @property
+    def corr(self) -> np.ndarray:
+        """The correlation matrix r_ij (1.8.10)."""
+        return self.adjustment.corr
+
+    @property
+    def Q(self) -> np.ndarray:
+        """The cofactor matrix Q = N⁻¹ (1.8.7)."""
+        return self.adjustment.Q
+
+    @property
+    def iterations(self) -> int:
+        return self.adjustment.iterations
+
+    @property
+    def history(self) -> list:
+        """One :class:`IterationRecord` per iteration (approximation used, δ, VᵀPV)."""
+        return self.adjustment.history
+
+
 def _as_weights(P, m: int):
     if P is None:
         return None
@@ -659,6 +696,20 @@ class BlockAdjustment:
     timings: dict = field(default_factory=dict)
 
 
+def _direct_observations(obs, shape):
+    """Validate direct observations of unknowns given as (values, weights); NaN values get weight 0.
+
+    Returns (values, weights) broadcast to ``shape`` (or (None, None) when ``obs`` is None).
+    """
+    if obs is None:
+        return None, None
+    values, weights = (np.broadcast_to(np.asarray(a, dtype=float), shape) for a in obs)
+    weights = np.where(np.isfinite(values), weights, 0.0)
+    if np.any(~np.isfinite(weights)) or np.any(weights < 0):
+        raise InputError("weights of the direct observations must be finite and non-negative")
+    return np.where(weights > 0, values, 0.0), weights
+
+
 def block_gauss_newton(linearize, frames0, points0, *, frame_observations=None, point_observations=None,
                        free_frames=None, free_points=None, tol_frames=1e-8, tol_points=1e-6,
                        max_iter: int = 30, covariance: bool = False, rcond: float = 1e-12,
@@ -703,17 +754,8 @@ def block_gauss_newton(linearize, frames0, points0, *, frame_observations=None, 
     free_frames = np.ones(n_frames, bool) if free_frames is None else np.asarray(free_frames, bool)
     free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
 
-    def direct(obs, shape):
-        if obs is None:
-            return None, None
-        values, weights = (np.broadcast_to(np.asarray(a, dtype=float), shape) for a in obs)
-        weights = np.where(np.isfinite(values), weights, 0.0)
-        if np.any(~np.isfinite(weights)) or np.any(weights < 0):
-            raise InputError("weights of the direct observations must be finite and non-negative")
-        return np.where(weights > 0, values, 0.0), weights
-
-    fv, fw = direct(frame_observations, frames.shape)
-    pv, pw = direct(point_observations, points.shape)
+    fv, fw = _direct_observations(frame_observations, frames.shape)
+    pv, pw = _direct_observations(point_observations, points.shape)
     tol1 = np.broadcast_to(np.asarray(tol_frames, dtype=float), (q,))
     tol2 = np.broadcast_to(np.asarray(tol_points, dtype=float), (3,))
     timings = {"jacobian": 0.0}
@@ -1034,17 +1076,9 @@ def block_gauss_newton_global(linearize, frames0, points0, globals0, *, frame_ob
     n_points, g = points.shape[0], glob.size
     free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
 
-    def direct(obs, shape):
-        if obs is None:
-            return None, None
-        values, weights = (np.broadcast_to(np.asarray(a, dtype=float), shape) for a in obs)
-        weights = np.where(np.isfinite(values), weights, 0.0)
-        if np.any(~np.isfinite(weights)) or np.any(weights < 0):
-            raise InputError("weights of the direct observations must be finite and non-negative")
-        return np.where(weights > 0, values, 0.0), weights
-
-    obs = [direct(frame_observations, frames.shape), direct(point_observations, points.shape),
-           direct(global_observations, glob.shape)]
+    obs = [_direct_observations(frame_observations, frames.shape),
+           _direct_observations(point_observations, points.shape),
+           _direct_observations(global_observations, glob.shape)]
     tols = [np.broadcast_to(np.asarray(t, dtype=float), (s,)) for t, s in ((tol_frames, q), (tol_points, 3), (tol_globals, g))]
 
     def priors(values):

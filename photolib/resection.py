@@ -28,7 +28,7 @@ import numpy as np
 from . import derivations
 from .camera import ExteriorOrientation, InteriorOrientation, as_points, correct_distortion
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
-from .lsq import Adjustment, IterationRecord, gauss_newton
+from .lsq import Adjustment, AdjustmentView, IterationRecord, gauss_newton
 from .rotation import check_order
 from .single_image import camera_coordinates, project
 
@@ -41,11 +41,14 @@ DEFAULT_TOL = (1e-7, 1e-7, 1e-7, 1e-10, 1e-10, 1e-10)
 
 # --- results -----------------------------------------------------------------------------------
 @dataclass
-class ResectionResult:
+class ResectionResult(AdjustmentView):
     """Result of :func:`space_resection` (§1.8).
 
     ``eo`` is the adjusted exterior orientation, ``adjustment`` the full least-squares result
     of :func:`photolib.lsq.gauss_newton` (order of the unknowns: X_S, Y_S, Z_S, ω, α, κ).
+    ``mu``, ``std`` (metres for X_S, Y_S, Z_S, radians for ω, α, κ), ``corr``, ``Q``,
+    ``iterations`` and ``history`` come from the adjustment; μ is in mm with unit weights
+    (unitless with P = 1/σ²).
     """
 
     eo: ExteriorOrientation
@@ -53,47 +56,18 @@ class ResectionResult:
     jacobian: str = "derived"
 
     @property
-    def mu(self) -> float:
-        """μ of (1.8.9), in mm with unit weights (unitless with P = 1/σ²)."""
-        return self.adjustment.mu
-
-    @property
-    def std(self) -> np.ndarray:
-        """m_j of (1.8.8): metres for X_S, Y_S, Z_S, radians for ω, α, κ."""
-        return self.adjustment.std
-
-    @property
     def std_degrees(self) -> np.ndarray:
         """m_j with the angular ones in degrees."""
         return np.concatenate([self.std[:3], np.degrees(self.std[3:])])
-
-    @property
-    def corr(self) -> np.ndarray:
-        """The correlation matrix r_ij of (1.8.10)."""
-        return self.adjustment.corr
-
-    @property
-    def Q(self) -> np.ndarray:
-        """The cofactor matrix Q = N⁻¹ of (1.8.7)."""
-        return self.adjustment.Q
 
     @property
     def residuals(self) -> np.ndarray:
         """V of (1.8.4) as (n, 2): v_x, v_y per point (corrections to the measured coordinates)."""
         return self.adjustment.residuals.reshape(-1, 2)
 
-    @property
-    def iterations(self) -> int:
-        return self.adjustment.iterations
-
-    @property
-    def history(self) -> list:
-        """One :class:`photolib.lsq.IterationRecord` per iteration (approximation used, δ, VᵀPV)."""
-        return self.adjustment.history
-
 
 @dataclass
-class AngleResectionResult:
+class AngleResectionResult(AdjustmentView):
     """Result of :func:`resection_by_angles` (§1.9): the projection centre and its accuracy.
 
     μ and m_j are *nominal*: of the n(n−1)/2 equations only 2n−3 are independent, but the
@@ -105,29 +79,9 @@ class AngleResectionResult:
     pairs: tuple
 
     @property
-    def mu(self) -> float:
-        return self.adjustment.mu
-
-    @property
-    def std(self) -> np.ndarray:
-        return self.adjustment.std
-
-    @property
-    def corr(self) -> np.ndarray:
-        return self.adjustment.corr
-
-    @property
     def residuals(self) -> np.ndarray:
         """v_i, one per pair of points (cosine units)."""
         return self.adjustment.residuals
-
-    @property
-    def iterations(self) -> int:
-        return self.adjustment.iterations
-
-    @property
-    def history(self) -> list:
-        return self.adjustment.history
 
 
 # --- input checks ------------------------------------------------------------------------------
