@@ -696,6 +696,24 @@ class BlockAdjustment:
     timings: dict = field(default_factory=dict)
 
 
+def _record_block_step(history, iteration, step, vtpv, progress, growth) -> int:
+    """Append an :class:`IterationRecord`, report it, and watch for divergence.
+
+    Returns the number of consecutive iterations in which VᵀPV grew; four in a row raise
+    :class:`ConvergenceError` with the history.
+    """
+    record = IterationRecord(iteration, np.empty(0), step, vtpv)
+    history.append(record)
+    if progress is not None:
+        progress(record)
+    if len(history) > 1 and vtpv > history[-2].vtpv * (1 + 1e-9):
+        growth += 1
+        if growth >= 4:
+            raise ConvergenceError(f"diverging: VᵀPV grew in {growth} consecutive iterations", history)
+        return growth
+    return 0
+
+
 def _direct_observations(obs, shape):
     """Validate direct observations of unknowns given as (values, weights); NaN values get weight 0.
 
@@ -793,16 +811,7 @@ def block_gauss_newton(linearize, frames0, points0, *, frame_observations=None, 
         for key, val in sol.timings.items():
             timings[key] = timings.get(key, 0.0) + val
         step = np.array([np.abs(sol.delta1).max(initial=0.0), np.abs(sol.delta2).max(initial=0.0)])
-        record = IterationRecord(iteration, np.empty(0), step, value)
-        history.append(record)
-        if progress is not None:
-            progress(record)
-        if len(history) > 1 and value > history[-2].vtpv * (1 + 1e-9):
-            growth += 1
-            if growth >= 4:
-                raise ConvergenceError(f"diverging: VᵀPV grew in {growth} consecutive iterations", history)
-        else:
-            growth = 0
+        growth = _record_block_step(history, iteration, step, value, progress, growth)
         frames = frames + sol.delta1
         points = points + sol.delta2
         if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points))):
@@ -1106,16 +1115,7 @@ def block_gauss_newton_global(linearize, frames0, points0, globals0, *, frame_ob
                                                   global_names=global_names, frame_names=frame_names)
         step = np.array([np.abs(sol.delta1).max(initial=0.0), np.abs(sol.delta2).max(initial=0.0),
                          np.abs(sol.delta3).max(initial=0.0)])
-        record = IterationRecord(iteration, np.empty(0), step, value)
-        history.append(record)
-        if progress is not None:
-            progress(record)
-        if len(history) > 1 and value > history[-2].vtpv * (1 + 1e-9):
-            growth += 1
-            if growth >= 4:
-                raise ConvergenceError(f"diverging: VᵀPV grew in {growth} consecutive iterations", history)
-        else:
-            growth = 0
+        growth = _record_block_step(history, iteration, step, value, progress, growth)
         frames, points, glob = frames + sol.delta1, points + sol.delta2, glob + sol.delta3
         if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points)) and np.all(np.isfinite(glob))):
             raise ConvergenceError(f"the iteration produced NaN/inf at step {iteration}", history)
