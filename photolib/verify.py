@@ -44,6 +44,9 @@ class Row:
     detail: str = ""
     as_printed: str = ""
 
+    def __post_init__(self):
+        self.ok = bool(self.ok)          # comparisons of numpy values give numpy.bool_
+
     def as_dict(self) -> dict:
         return dict(self.__dict__)
 

@@ -27,3 +27,17 @@ def test_toc_lists_every_notebook():
     toc = (ROOT / "_toc.yml").read_text(encoding="utf-8")
     for nb in (ROOT / "chapters").glob("*.ipynb"):
         assert f"chapters/{nb.stem}" in toc, f"{nb.name} is not in _toc.yml"
+
+
+def test_verify_needs_no_test_only_package():
+    """The main job installs only the `book` extra: `photolib verify` must not import OpenCV,
+    pytest or hypothesis (they come with the `test` extra)."""
+    import subprocess
+    import sys
+    code = ("import sys\n"
+            "for name in ('cv2', 'pytest', 'hypothesis', 'nbval'):\n"
+            "    sys.modules[name] = None\n"
+            "from photolib.cli import main\n"
+            "sys.exit(main(['verify', '--json']))\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=600)
+    assert done.returncode == 0, done.stderr[-2000:]
