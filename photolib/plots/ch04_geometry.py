@@ -28,6 +28,7 @@ import numpy as np
 from .. import projective
 from ..camera import ExteriorOrientation, InteriorOrientation
 from ..errors import DegenerateGeometryError
+from ..rotation import rot_y
 from ..single_image import project
 
 
@@ -281,7 +282,7 @@ def facade_scene(seed=2, sigma=0.02):
     io = InteriorOrientation(50.0)
     # a terrestrial camera 45 m in front of the facade, looking at it obliquely (camera −z → +Y)
     eo = ExteriorOrientation.from_degrees(-12.0, -45.0, 6.0, 90.0 - 8.0, 0.0, 0.0, order="wak")
-    eo = ExteriorOrientation.from_matrix(eo.center, eo.matrix @ _rot_y(np.radians(-25.0)), "wak")
+    eo = ExteriorOrientation.from_matrix(eo.center, eo.matrix @ rot_y(np.radians(-25.0)), "wak")
     lines = []
     for X in np.linspace(0, 40, 11):
         lines.append(np.column_stack([np.full(30, X), np.linspace(0, 24, 30)]))
@@ -293,11 +294,6 @@ def facade_scene(seed=2, sigma=0.02):
     xy = project(to3(ctrl), eo, io)
     return {"io": io, "eo": eo, "lines": lines, "image_lines": img_lines, "control": ctrl,
             "image_control": xy, "measured": xy + rng.normal(0, sigma, xy.shape), "sigma": sigma}
-
-
-def _rot_y(a):
-    c, s = np.cos(a), np.sin(a)
-    return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
 
 
 def homography_rectification(scene=None):
