@@ -69,9 +69,9 @@ def make_problem(n_images: int):
 
 def image_rms(blk, cams, pts):
     """r.m.s. image residual (mm, per coordinate) of a solution, computed by the book's (3.5.1)."""
-    from photolib.synthetic import _project
+    from photolib.single_image import project_to_images
     o = blk.observations
-    xy, _ = _project(cams, o.image, pts[o.point], blk.io, blk.order)
+    xy, _ = project_to_images(cams, o.image, pts[o.point], blk.io, blk.order)
     return float(np.sqrt(np.mean((xy - o.xy) ** 2)))
 
 

@@ -50,6 +50,7 @@ from .errors import ConvergenceError, DegenerateGeometryError, InputError
 from .lsq import (BlockCorrectionEquations, GlobalBlockCorrectionEquations, block_equations_dense, block_gauss_newton,
                   block_gauss_newton_global, global_block_equations_dense)
 from .rotation import check_order, rotation_angles, rotation_matrix
+from .single_image import project_to_images
 
 __all__ = ["BundleResult", "CheckPointStatistics", "bundle_adjustment", "bundle_correction_equations",
            "check_point_statistics", "as_observations",
@@ -915,8 +916,6 @@ def rig_design_matrix(observations, exposure_of_image, camera_of_image, exposure
 def _rs_frames(cameras, rates, n):
     cams = np.asarray(cameras, dtype=float).reshape(-1, 6)
     rt = np.zeros((cams.shape[0], 6)) if rates is None else np.asarray(rates, dtype=float).reshape(-1, 6)
-    if cams.shape[0] not in (1, n) and n:
-        pass
     if rt.shape != cams.shape:
         raise InputError(f"rates must have the shape of the exterior orientations {cams.shape}, got {rt.shape}")
     if not (np.all(np.isfinite(cams)) and np.all(np.isfinite(rt))):
@@ -958,18 +957,19 @@ def rolling_shutter_project(eo0, rates, XYZ, io: InteriorOrientation, order: str
     if X.ndim != 2 or X.shape[1] != 3 or not np.all(np.isfinite(X)):
         raise InputError("XYZ must be a finite (k, 3) array")
     cams, rt = _rs_frames(eo0, rates, X.shape[0])
+    if image is None and cams.shape[0] > 1:
+        raise InputError(f"{cams.shape[0]} exterior orientations are given: say with `image` which one each point belongs to")
     idx = np.zeros(X.shape[0], np.intp) if image is None else np.asarray(image, dtype=np.intp)
     if idx.shape != (X.shape[0],) or idx.min(initial=0) < 0 or idx.max(initial=0) >= cams.shape[0]:
         raise InputError("image must give a valid image index for every point")
     x = np.zeros(X.shape[0])
+    each = np.arange(X.shape[0])
     for it in range(1, max_iter + 1):
-        e = cams[idx] + rt[idx] * x[:, None]
-        A = rotation_matrix(e[:, 3], e[:, 4], e[:, 5], order)
-        star = np.einsum("kji,kj->ki", A, X - e[:, :3])
-        if np.any(star[:, 2] >= 0):
+        e = cams[idx] + rt[idx] * x[:, None]                 # the orientation at the time of line x (3.9.2)
+        xy, z_star = project_to_images(e, each, X, io, order)
+        if np.any(z_star >= 0):
             raise DegenerateGeometryError(
-                f"points {np.flatnonzero(star[:, 2] >= 0)[:10].tolist()} are not in front of the image line (z* ≥ 0)")
-        xy = np.column_stack([io.x0 - io.f * star[:, 0] / star[:, 2], io.y0 - io.f * star[:, 1] / star[:, 2]])
+                f"points {np.flatnonzero(z_star >= 0)[:10].tolist()} are not in front of the image line (z* ≥ 0)")
         step = np.abs(xy[:, 0] - x)
         x = xy[:, 0]
         if not np.all(np.isfinite(x)):

@@ -117,6 +117,10 @@ def _as_weights(P, m: int):
         raise InputError(f"weight matrix: expected shape ({m}, {m}), got {P.shape}")
     if not np.all(np.isfinite(P)):
         raise InputError("weights contain NaN or inf")
+    if P.ndim == 1 and np.any(P <= 0):
+        raise InputError("weights p_i = 1/m_i² must be positive (1.8.6)")
+    if P.ndim == 2 and np.any(np.diag(P) <= 0):
+        raise InputError("the weight matrix must have a positive diagonal (1.8.6)")
     return P
 
 

@@ -1,7 +1,8 @@
 """Geometry of a single frame image — Chapter 1, §1.1 and §1.4–§1.7.
 
 * §1.1 elements of central projection: :func:`principal_to_nadir_distance` (on = f·tan α₀).
-* §1.4 image ↔ object: :func:`project` — collinearity equations (1.4.10)–(1.4.12);
+* §1.4 image ↔ object: :func:`project` — collinearity equations (1.4.10)–(1.4.12)
+  (:func:`project_to_images` for many images at once);
   :func:`image_to_ground` — ray to a known height, (1.4.4)–(1.4.7).
 * §1.5 horizontal image: :func:`horizontal_image_scale` (1/m = f/H).
 * §1.6 height error: :func:`planimetric_error_from_height_error` (1.6.1).
@@ -18,6 +19,7 @@ import numpy as np
 
 from .camera import ExteriorOrientation, InteriorOrientation, apply_distortion, as_points, correct_distortion
 from .errors import DegenerateGeometryError, InputError
+from .rotation import rotation_matrix
 
 
 def _positive(value, name):
@@ -69,6 +71,23 @@ def project(XYZ, eo: ExteriorOrientation, io: InteriorOrientation, distortion: b
     if distortion and io.has_distortion:
         xy = apply_distortion(xy, io)
     return xy
+
+
+def project_to_images(cameras, image, XYZ, io: InteriorOrientation, order: str = "kaw"):
+    """Collinearity (1.4.12) for many images at once: point ``XYZ[k]`` in image ``image[k]``.
+
+    ``cameras`` is an (n, 6) array of exterior orientations (X_S, Y_S, Z_S, ω, α, κ) in the
+    rotation sequence ``order``. Returns the ideal image coordinates (k, 2) and z* (k,) of
+    (1.4.10); points behind their image have z* ≥ 0 and are left for the caller to judge.
+    Vectorised over observations — the projection used by the bundle method's simulations (§3.5).
+    """
+    cameras = np.asarray(cameras, dtype=float)
+    image = np.asarray(image, dtype=np.intp)
+    XYZ = np.asarray(XYZ, dtype=float)
+    A = rotation_matrix(cameras[:, 3], cameras[:, 4], cameras[:, 5], order)[image]
+    star = np.einsum("kji,kj->ki", A, XYZ - cameras[image, :3])                   # Aᵀ(X − X_S)
+    xy = np.column_stack([io.x0 - io.f * star[:, 0] / star[:, 2], io.y0 - io.f * star[:, 1] / star[:, 2]])
+    return xy, star[:, 2]
 
 
 def image_to_ground(xy, Z, eo: ExteriorOrientation, io: InteriorOrientation, distortion: bool = True) -> np.ndarray:

@@ -19,7 +19,8 @@ import numpy as np
 
 from .camera import InteriorOrientation
 from .errors import InputError
-from .rotation import check_order, rotation_matrix
+from .single_image import project_to_images
+from .rotation import check_order
 
 TIE, CONTROL, CHECK = 0, 1, 2
 """Point kinds in :attr:`SyntheticBlock.kind`."""
@@ -86,14 +87,6 @@ def terrain_height(X, Y, mean: float = 150.0, relief: float = 30.0, wavelength: 
     X, Y = np.asarray(X, dtype=float), np.asarray(Y, dtype=float)
     k = 2 * np.pi / wavelength
     return mean + 0.5 * relief * (np.sin(k * X) * np.cos(0.7 * k * Y) + np.sin(0.45 * k * (X + Y)))
-
-
-def _project(cameras, image, XYZ, io, order):
-    """Collinearity (3.5.1) of points ``XYZ[k]`` in images ``image[k]`` → (xy, z*)."""
-    A = rotation_matrix(cameras[:, 3], cameras[:, 4], cameras[:, 5], order)[image]
-    star = np.einsum("kji,kj->ki", A, XYZ - cameras[image, :3])          # Aᵀ(X − X_S)
-    xy = np.column_stack([io.x0 - io.f * star[:, 0] / star[:, 2], io.y0 - io.f * star[:, 1] / star[:, 2]])
-    return xy, star[:, 2]
 
 
 def aerial_block(n_strips: int = 2, images_per_strip: int = 5, *, f: float = 100.0, frame_size: float = 100.0,
@@ -217,7 +210,7 @@ def aerial_block(n_strips: int = 2, images_per_strip: int = 5, *, f: float = 100
     image_idx, point_idx = [], []
     for j in range(n):
         near = np.flatnonzero(np.max(np.abs(points[:, :2] - cameras[j, :2]), axis=1) < 0.8 * footprint)
-        xy, zs = _project(cameras, np.full(near.size, j), points[near], io, order)
+        xy, zs = project_to_images(cameras, np.full(near.size, j), points[near], io, order)
         inside = (np.abs(xy[:, 0] - io.x0) < half) & (np.abs(xy[:, 1] - io.y0) < half) & (zs < 0)
         image_idx.append(np.full(inside.sum(), j))
         point_idx.append(near[inside])
@@ -239,7 +232,7 @@ def aerial_block(n_strips: int = 2, images_per_strip: int = 5, *, f: float = 100
 
     order_obs = np.lexsort((point_idx, image_idx))
     image_idx, point_idx = image_idx[order_obs], point_idx[order_obs]
-    xy_true, _ = _project(cameras, image_idx, points[point_idx], io, order)
+    xy_true, _ = project_to_images(cameras, image_idx, points[point_idx], io, order)
     if camera.has_distortion:
         from .camera import apply_distortion
         xy_true = apply_distortion(xy_true, camera)
@@ -277,12 +270,12 @@ class RigBlock:
         return rig_image_orientation(self.exposures[self.exposure_of_image], mounts[self.camera_of_image], self.order)
 
 
-def _observe(cams, points, io_of_image, frame_half, rng, sigma, order, keep_min=2):
+def _observe(cams, points, io_of_image, frame_half, rng, sigma, order):
     """Project every point into every image (ideal, no distortion), keep those inside the frame."""
     image_idx, point_idx, xy_all = [], [], []
     for j in range(cams.shape[0]):
         io = io_of_image[j]
-        xy, zs = _project(cams, np.full(len(points), j), points, io, order)
+        xy, zs = project_to_images(cams, np.full(len(points), j), points, io, order)
         inside = (np.abs(xy[:, 0] - io.x0) < frame_half) & (np.abs(xy[:, 1] - io.y0) < frame_half) & (zs < 0)
         image_idx.append(np.full(inside.sum(), j))
         point_idx.append(np.flatnonzero(inside))
@@ -322,7 +315,7 @@ def fig310_block(rig: bool = False, sigma: float = 0.005, seed: int = 0, order: 
     visible = {0: [0, 1, 2, 3, 4, 5], 1: [0, 1, 2, 3, 4, 5], 2: [0, 1, 4, 5, 6, 7], 3: [0, 1, 4, 5, 6, 7]}
     image = np.concatenate([np.full(6, j) for j in range(4)])
     point = np.concatenate([visible[j] for j in range(4)])
-    xy, _ = _project(cams, image, points[point], io, order)
+    xy, _ = project_to_images(cams, image, points[point], io, order)
     xy = xy + rng.normal(0.0, sigma, xy.shape) if sigma > 0 else xy
     return RigBlock(ios=(io, io), order=order, exposures=exposures if rig else cams[[0, 2]],
                     mounts=mounts if rig else np.full((1, 6), np.nan), points=points, kind=kind,
@@ -458,7 +451,7 @@ def corridor_strip(n_images: int = 16, *, wander: float = 0.5, gnss_sigma: float
     o = blk.observations
     image, point = o.image, o.point
     # re-project with the wandering centres; keep the same visibility
-    xy_true, _ = _project(cams, image, pts[point], blk.io, blk.order)
+    xy_true, _ = project_to_images(cams, image, pts[point], blk.io, blk.order)
     target = np.full(n_images, -1)
     if with_target:
         tgt = np.column_stack([cams[:, 0] + rng.normal(0, 3.0, n_images), rng.normal(0, 2.0, n_images)])
@@ -466,7 +459,7 @@ def corridor_strip(n_images: int = 16, *, wander: float = 0.5, gnss_sigma: float
         target = len(pts) + np.arange(n_images)
         pts = np.vstack([pts, np.column_stack([tgt, tz])])
         kind = np.concatenate([kind, np.full(n_images, CONTROL)])
-        t_xy, _ = _project(cams, np.arange(n_images), pts[target], blk.io, blk.order)
+        t_xy, _ = project_to_images(cams, np.arange(n_images), pts[target], blk.io, blk.order)
         image = np.concatenate([image, np.arange(n_images)])
         point = np.concatenate([point, target])
         xy_true = np.vstack([xy_true, t_xy])

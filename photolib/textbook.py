@@ -49,11 +49,6 @@ class Quantity:
     proof: str = ""                     # erratum: how it was established
     as_printed: bool = False            # erratum: the "as printed" computation reproduces the book
 
-    @property
-    def half_unit(self) -> float:
-        """Half a unit of the last printed decimal: the rounding interval of the printed value."""
-        return 0.5 * 10.0 ** (-(self.decimals or 0))
-
 
 @dataclass
 class Example:

@@ -37,6 +37,7 @@ from .camera import InteriorOrientation
 from .errors import InputError
 from .lsq import block_equations_dense
 from .rotation import check_order, rotation_matrix
+from .single_image import project_to_images
 from .synthetic import CHECK, CONTROL, TIE, Observations
 
 __all__ = ["BookBlock", "BundleSystem", "footprint_visibility", "fig_3_10_block", "fig_3_13_block",
@@ -172,12 +173,11 @@ class BookBlock:
 
 
 def _project(cameras, image, XYZ, io, order):
-    """Collinearity (3.5.1): x = x₀ − f x*/z*, y = y₀ − f y*/z*, (x*, y*, z*)ᵀ = Aᵀ(X − X_S)."""
-    A = rotation_matrix(cameras[:, 3], cameras[:, 4], cameras[:, 5], order)[image]
-    star = np.einsum("kji,kj->ki", A, XYZ - cameras[image, :3])
-    if np.any(star[:, 2] >= 0):
+    """Collinearity (3.5.1) of points in front of their images (else :class:`InputError`)."""
+    xy, z_star = project_to_images(cameras, image, XYZ, io, order)
+    if np.any(z_star >= 0):
         raise InputError("a point is not in front of its image")
-    return np.column_stack([io.x0 - io.f * star[:, 0] / star[:, 2], io.y0 - io.f * star[:, 1] / star[:, 2]])
+    return xy
 
 
 def _build(name, centres_xy, points_xy, kind, image_labels, point_labels, *, f, frame_size, flying_height,

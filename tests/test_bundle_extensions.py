@@ -174,16 +174,19 @@ def test_rolling_shutter_projection_zero_rates_is_frame_projection_and_round_tri
     assert its < 10
     # consistency: the frame EO of each point's own line projects it to the same place (3.9.1)/(3.9.2)
     eo_line = blk.cameras[o.image] + rates[o.image] * xy[:, :1]
-    from photolib.synthetic import _project
-    back, _ = _project(eo_line, np.arange(len(o)), blk.points[o.point], blk.io, blk.order)
+    from photolib.single_image import project_to_images
+    back, _ = project_to_images(eo_line, np.arange(len(o)), blk.points[o.point], blk.io, blk.order)
     assert np.allclose(back, xy, atol=1e-9)
 
 
 def test_rolling_shutter_projection_raises_when_it_cannot_converge():
     blk = synthetic.aerial_block(1, 2, f=8.8, frame_size=13.2, flying_height=100.0, sigma=0.0, seed=4)
     wild = np.tile([0.0, 0.0, 0.0, 0.0, 0.0, 0.3], (blk.n_images, 1))
+    first = np.zeros(len(blk.points), int)                 # every point in the first image
     with pytest.raises(ConvergenceError, match="rolling-shutter"):
-        rolling_shutter_project(blk.cameras, wild, blk.points, blk.io, blk.order, max_iter=30)
+        rolling_shutter_project(blk.cameras, wild, blk.points, blk.io, blk.order, image=first, max_iter=30)
+    with pytest.raises(InputError, match="which one each point belongs to"):
+        rolling_shutter_project(blk.cameras, wild, blk.points, blk.io, blk.order)   # several images, no `image`
 
 
 @pytest.mark.parametrize("model", ["full", "linear"])

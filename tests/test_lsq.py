@@ -69,6 +69,8 @@ def test_singular_geometry_is_named():
 def test_bad_input_and_divergence():
     with pytest.raises(InputError, match="NaN"):
         solve_normal_equations(np.array([[1.0], [np.nan]]), np.zeros(2))
+    with pytest.raises(InputError, match="positive"):
+        solve_normal_equations(np.eye(3), np.zeros(3), [1.0, -1.0, 1.0])
     with pytest.raises(InputError, match="cannot determine"):
         solve_normal_equations(np.ones((1, 2)), np.zeros(1))
     with pytest.raises(ConvergenceError) as info:      # a fixed point that Gauss-Newton never reaches

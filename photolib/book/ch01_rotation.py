@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from ..derivations import alpha, elementary_rotations, kappa, omega
+from ..derivations import alpha, elementary_rotations, kappa, omega, rotation_matrix_symbolic
 
 a, b, c, d = sp.symbols("a b c d", real=True)
 A_SYMBOLS = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"a{i + 1}{j + 1}", real=True))
@@ -24,13 +24,10 @@ def _parse(text: str) -> sp.Expr:
 
 
 def product(order: str) -> sp.Matrix:
-    """A_ω A_α A_κ (``"wak"``, (1.3.2)) or A_κ A_α A_ω (``"kaw"``, (1.3.4))."""
-    A_w, A_a, A_k = elementary_rotations()
-    if order == "wak":
-        return A_w * A_a * A_k
-    if order == "kaw":
-        return A_k * A_a * A_w
-    raise ValueError(f"unknown order {order!r}")
+    """A_ω A_α A_κ (``"wak"``, (1.3.2)) or A_κ A_α A_ω (``"kaw"``, (1.3.4)), from the library's sympy rotation."""
+    if order not in ("wak", "kaw"):
+        raise ValueError(f"unknown order {order!r}")
+    return rotation_matrix_symbolic(order)
 
 
 def _is_zero(expr) -> bool:

@@ -193,17 +193,19 @@ def perturb_printed_inputs(inputs: dict, rng) -> dict:
     return out
 
 
-def rounding_monte_carlo(inputs: dict, compute, n: int = 200, seed: int = 2022) -> dict:
+def rounding_monte_carlo(inputs: dict, compute, n: int = 200, seed: int = 2022, perturb=None) -> dict:
     """Standard deviation of every quantity of ``compute`` over ``n`` re-roundings of the printed inputs.
 
     The book printed its simulated image coordinates to 0.001 mm (and its intermediate RO angles
     and model coordinates to 0.0001° and 0.001 m); its own program worked with the unrounded
     values. Replacing each rounded input by a uniform draw within ± half a unit models that lost
     information. An ``input-rounding`` bound is 3σ of this spread plus half a unit of the printed
-    result (see :func:`rounding_bound`).
+    result (see :func:`rounding_bound`). ``perturb(inputs, rng)`` replaces the default
+    :func:`perturb_printed_inputs` for other examples (Chapter 4 re-rounds the image coordinates only).
     """
+    perturb = perturb_printed_inputs if perturb is None else perturb
     rng = np.random.default_rng(seed)
-    runs = [compute(perturb_printed_inputs(inputs, rng)) for _ in range(n)]
+    runs = [compute(perturb(inputs, rng)) for _ in range(n)]
     return {k: float(np.std([r[k] for r in runs])) for k in runs[0] if isinstance(runs[0][k], float)}
 
 

@@ -154,8 +154,8 @@ def rig_collinearity_3_8_13(inputs: dict) -> dict:
     subs.update({D.X: P[0], D.Y: P[1], D.Z: P[2], D.f: 100.0, D.x0: 0.0, D.y0: 0.0})
     xy_printed = np.array([float(px.subs(subs)), float(py.subs(subs))])
     eo2 = bundle.rig_image_orientation(e1, mount, order)
-    from ..synthetic import _project
-    xy_frame, _ = _project(eo2[None], np.zeros(1, int), P[None], InteriorOrientation(f=100.0), order)
+    from ..single_image import project_to_images
+    xy_frame, _ = project_to_images(eo2[None], np.zeros(1, int), P[None], InteriorOrientation(f=100.0), order)
     return {"printed_equals_derived": bool(ok and np.allclose(xy_printed, xy_frame[0], atol=1e-9))}
 
 

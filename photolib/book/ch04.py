@@ -34,6 +34,7 @@ import numpy as np
 
 from .. import projective as pj
 from ..camera import InteriorOrientation
+from . import ch02
 from .ch02 import rounding_bound  # noqa: F401  (same bound policy as Chapter 2: 3σ + half a printed unit)
 
 ROUNDING_MM = 0.0005
@@ -162,8 +163,7 @@ def rounding_monte_carlo(inputs: dict, compute, n: int = 200, seed: int = 2022) 
     """Standard deviation of every quantity of ``compute`` over ``n`` re-roundings of the image coordinates.
 
     The book's program worked with unrounded simulated coordinates and printed them to 0.001 mm;
-    a uniform draw within ± half a unit around each printed value models that lost information.
+    a uniform draw within ± half a unit around each printed value models that lost information
+    (Chapter 2's :func:`photolib.book.ch02.rounding_monte_carlo` with :func:`perturb_image_coordinates`).
     """
-    rng = np.random.default_rng(seed)
-    runs = [compute(perturb_image_coordinates(inputs, rng)) for _ in range(n)]
-    return {k: float(np.std([r[k] for r in runs])) for k in runs[0]}
+    return ch02.rounding_monte_carlo(inputs, compute, n, seed, perturb=perturb_image_coordinates)
