@@ -310,8 +310,12 @@ def camera_matrix(io: InteriorOrientation) -> np.ndarray:
     return np.array([[io.f, 0.0, io.x0], [0.0, io.f, -io.y0], [0.0, 0.0, 1.0]])
 
 
-def projection_matrix(eo: ExteriorOrientation, io: InteriorOrientation) -> np.ndarray:
-    """3×4 OpenCV projection matrix P = K [R | t] (mm): (u, v, 1) ∝ P (X, Y, Z, 1)."""
+def opencv_projection_matrix(eo: ExteriorOrientation, io: InteriorOrientation) -> np.ndarray:
+    """3×4 OpenCV projection matrix P = K [R | t] (mm): (u, v, 1) ∝ P (X, Y, Z, 1).
+
+    The book's own camera matrix (image y up) is :func:`photolib.projective.projection_matrix`;
+    the two differ by the flip of the y axis, diag(1, −1, 1).
+    """
     R, t = eo_to_opencv(eo)
     return camera_matrix(io) @ np.column_stack([R, t])
 

@@ -132,6 +132,26 @@ def _weighted(P, M):
     return P @ M
 
 
+def point_weights(weights, n: int):
+    """Weights of 2-D point observations as one value per coordinate, (2n,) ordered x₁, y₁, x₂, …
+
+    ``weights`` may be None (unit weights), one per point (n,), one per coordinate (n, 2), or
+    already flat (2n,). All must be finite and positive (p_i = 1/m_i², (1.8.6)).
+    """
+    if weights is None:
+        return None
+    w = np.asarray(weights, dtype=float)
+    if w.shape == (n,):
+        w = np.repeat(w, 2)
+    elif w.shape == (n, 2):
+        w = w.ravel()
+    elif w.shape != (2 * n,):
+        raise InputError(f"weights: expected shape ({n},), ({n}, 2) or ({2 * n},), got {w.shape}")
+    if not np.all(np.isfinite(w)) or np.any(w <= 0):
+        raise InputError("weights must be finite and positive (p_i = 1/m_i²)")
+    return w
+
+
 def weighted_square_sum(V, P=None) -> float:
     """VᵀPV."""
     V = np.asarray(V, dtype=float)

@@ -59,7 +59,7 @@ import numpy as np
 
 from .camera import ExteriorOrientation, InteriorOrientation, as_points
 from .errors import DegenerateGeometryError, InputError
-from .lsq import Adjustment, accuracy, gauss_newton, solve_normal_equations
+from .lsq import Adjustment, accuracy, gauss_newton, point_weights, solve_normal_equations
 from .rotation import check_order, rotation_angles
 
 DLT_NAMES = tuple(f"L{i}" for i in range(1, 12))
@@ -374,17 +374,7 @@ def dlt_resection(XYZ, xy, method: str = "normalized", weights=None) -> DLTResec
         raise InputError(f"the projective resection needs at least 6 control points, got {len(XYZ)}")
     _check_not_coplanar(XYZ, "the control points")
     n = len(XYZ)
-    P = None
-    if weights is not None:
-        P = np.asarray(weights, dtype=float)
-        if P.shape == (n,):
-            P = np.repeat(P, 2)
-        elif P.shape == (n, 2):
-            P = P.ravel()
-        else:
-            raise InputError(f"weights: expected shape ({n},) or ({n}, 2), got {P.shape}")
-        if not np.all(np.isfinite(P)) or np.any(P <= 0):
-            raise InputError("weights must be finite and positive")
+    P = point_weights(weights, n)
     B, free = dlt_design(XYZ, xy)
     delta, Q = solve_normal_equations(B, free, P, DLT_NAMES)     # M = −Q·BᵀPL, (4.2.2)–(4.2.3)
     if method == "book":
@@ -864,12 +854,7 @@ def homography_lsq(src, dst, H0=None, weights=None, tol: float = 1e-12, max_iter
     h0 = (H0 / H0[2, 2]).ravel()[:8] if H0.shape == (3, 3) else H0
     if h0.shape != (8,) or not np.all(np.isfinite(h0)):
         raise InputError("H0 must be a 3×3 matrix or h₁…h₈")
-    P = None
-    if weights is not None:
-        P = np.asarray(weights, dtype=float)
-        P = np.repeat(P, 2) if P.shape == (n,) else P.ravel()
-        if P.shape != (2 * n,) or not np.all(np.isfinite(P)) or np.any(P <= 0):
-            raise InputError(f"weights: expected positive values of shape ({n},) or ({n}, 2)")
+    P = point_weights(weights, n)
     residual_fn, jacobian_fn = derivations.homography_model().compile()
     data = (src[:, 0], src[:, 1], dst[:, 0], dst[:, 1])
 

@@ -28,7 +28,7 @@ import numpy as np
 from . import derivations
 from .camera import ExteriorOrientation, InteriorOrientation, as_points, correct_distortion
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
-from .lsq import Adjustment, AdjustmentView, IterationRecord, gauss_newton
+from .lsq import Adjustment, AdjustmentView, IterationRecord, gauss_newton, point_weights
 from .rotation import check_order
 from .single_image import camera_coordinates, project
 
@@ -101,22 +101,6 @@ def _control_points(XYZ, xy, io):
     if io.has_distortion:
         xy = correct_distortion(xy, io)                          # (1.2.3)
     return XYZ, xy
-
-
-def _weights(weights, n: int):
-    """Per-coordinate weights (2n,) from None, (n,), (n, 2) or (2n,)."""
-    if weights is None:
-        return None
-    w = np.asarray(weights, dtype=float)
-    if w.shape == (n,):
-        w = np.repeat(w, 2)
-    elif w.shape == (n, 2):
-        w = w.ravel()
-    elif w.shape != (2 * n,):
-        raise InputError(f"weights: expected shape ({n},), ({n}, 2) or ({2 * n},), got {w.shape}")
-    if not np.all(np.isfinite(w)) or np.any(w <= 0):
-        raise InputError("weights must be finite and positive (p_i = 1/m_i²)")
-    return w
 
 
 def approximate_exterior_orientation(XYZ, xy, io: InteriorOrientation, order: str = "kaw") -> ExteriorOrientation:
@@ -216,7 +200,7 @@ def space_resection(XYZ, xy, io: InteriorOrientation, eo0=None, order: str = "ka
     if jacobian == "printed" and order != "kaw":
         raise InputError("the printed partials of (1.8.3) are written for the κ–α–ω matrix (1.3.5): use order='kaw'")
     XYZ, xy = _control_points(XYZ, xy, io)
-    P = _weights(weights, len(XYZ))
+    P = point_weights(weights, len(XYZ))
     if eo0 is None:
         eo0 = approximate_exterior_orientation(XYZ, xy, io, order)
     if isinstance(eo0, ExteriorOrientation):

@@ -183,7 +183,7 @@ def test_rvec_against_cv2_rodrigues():
 def test_decompose_projection_matrix_agrees():
     eo = ExteriorOrientation.from_degrees(1200.0, -300.0, 1500.0, 3.0, -5.0, 40.0)
     io = InteriorOrientation(120.0, 0.4, -0.25)
-    P = cv.projection_matrix(eo, io)
+    P = cv.opencv_projection_matrix(eo, io)
     K, R, C, *_ = cv2.decomposeProjectionMatrix(P)
     K = K / K[2, 2]
     np.testing.assert_allclose(K, cv.camera_matrix(io), atol=1e-9)

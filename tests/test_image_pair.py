@@ -15,7 +15,7 @@ from scipy.spatial.transform import Rotation
 from photolib import derivations as d
 from photolib import image_pair as ip
 from photolib.camera import ExteriorOrientation, InteriorOrientation
-from photolib.conventions import camera_matrix, eo_to_opencv, image_to_opencv, projection_matrix
+from photolib.conventions import camera_matrix, eo_to_opencv, image_to_opencv, opencv_projection_matrix
 from photolib.errors import DegenerateGeometryError, InputError
 from photolib.single_image import project
 
@@ -67,7 +67,7 @@ def test_parallaxes():
 # --- §2.4–§2.5 forward intersection -----------------------------------------------------------------------
 def test_forward_intersection_matches_opencv_triangulate_points():
     eo1, eo2, XYZ, xy1, xy2 = make_pair(1)
-    P1, P2 = projection_matrix(eo1, IO), projection_matrix(eo2, IO)
+    P1, P2 = opencv_projection_matrix(eo1, IO), opencv_projection_matrix(eo2, IO)
     np.testing.assert_allclose(P1, camera_matrix(IO) @ np.column_stack(eo_to_opencv(eo1)))
     Xh = cv2.triangulatePoints(P1, P2, image_to_opencv(xy1).T, image_to_opencv(xy2).T)
     X_cv = (Xh[:3] / Xh[3]).T

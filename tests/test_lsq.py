@@ -76,3 +76,14 @@ def test_bad_input_and_divergence():
     with pytest.raises(ConvergenceError) as info:      # a fixed point that Gauss-Newton never reaches
         gauss_newton(lambda p: (np.array([[1.0]]), np.array([1.0])), [0.0], max_iter=5)
     assert len(info.value.history) == 5
+
+
+def test_point_weights_shapes_and_errors():
+    from photolib.lsq import point_weights
+    assert point_weights(None, 3) is None
+    np.testing.assert_array_equal(point_weights([1.0, 2.0], 2), [1.0, 1.0, 2.0, 2.0])
+    np.testing.assert_array_equal(point_weights([[1.0, 3.0], [2.0, 4.0]], 2), [1.0, 3.0, 2.0, 4.0])
+    with pytest.raises(InputError, match="expected shape"):
+        point_weights([1.0, 2.0, 3.0], 2)
+    with pytest.raises(InputError, match="positive"):
+        point_weights([1.0, 0.0], 2)
