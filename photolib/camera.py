@@ -31,6 +31,21 @@ def as_points(values, dim: int, what: str = "points") -> np.ndarray:
     return arr
 
 
+def as_point_pairs(first, dim_first: int, second, dim_second: int, names=("points", "points"),
+                   minimum: int = 1, task: str = "this problem"):
+    """Validate two arrays of corresponding points (same count, finite) and a minimum count.
+
+    Returns the two validated arrays; the messages name both point sets and the task.
+    """
+    a = as_points(first, dim_first, names[0])
+    b = as_points(second, dim_second, names[1])
+    if len(a) != len(b):
+        raise InputError(f"{len(a)} {names[0]} but {len(b)} {names[1]}: shapes must match")
+    if len(a) < minimum:
+        raise InputError(f"{task} needs at least {minimum} points, got {len(a)}")
+    return a, b
+
+
 @dataclass(frozen=True)
 class InteriorOrientation:
     """Interior orientation (§1.2): focal length f, principal point (x₀, y₀), Brown coefficients.

@@ -636,12 +636,8 @@ def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_
     pts, frm = eq.point[coupled], eq.frame[coupled]
     W = np.einsum("kri,krj->kij", PB1, eq.B2)[coupled]
     del PB1, PB2
-    for prior, N, Lv in ((frame_prior, N11, L1), (point_prior, N22, L2)):
-        if prior is not None:
-            l, p = (np.asarray(a, dtype=float) for a in prior)
-            idx = np.arange(p.shape[1])
-            N[:, idx, idx] += p
-            Lv -= p * l
+    _add_priors(frame_prior, N11, L1)
+    _add_priors(point_prior, N22, L2)
     # fixed points/images: identity placeholders, their corrections are forced to zero below
     N22[~free_points] = np.eye(3)
     L2[~free_points] = 0.0
@@ -718,6 +714,17 @@ class BlockAdjustment:
     converged: bool
     history: list = field(default_factory=list)
     timings: dict = field(default_factory=dict)
+
+
+def _add_priors(prior, N, L):
+    """Add direct observations (values l, weights p) of block unknowns to their diagonal blocks
+    of N and to Lᴺ, in place: N_ii += p, Lᴺ_i −= p·l (the (3.5.17)–(3.5.19) rows folded in)."""
+    if prior is None:
+        return
+    l, p = (np.asarray(a, dtype=float) for a in prior)
+    idx = np.arange(p.shape[1])
+    N[:, idx, idx] += p
+    L -= p * l
 
 
 def _record_block_step(history, iteration, step, vtpv, progress, growth) -> int:
@@ -980,12 +987,8 @@ def solve_block_normal_equations_global(eq: GlobalBlockCorrectionEquations, n_fr
     N13 = _block_sum(eq.frame, np.einsum("kri,krj->kij", PB1, B3), n_frames).reshape(n_frames * q, g)
     W1 = np.einsum("kri,krj->kij", PB1[on_free], eq.B2[on_free])          # q×3 blocks of N₁₂
     W3 = np.einsum("kri,krj->kij", PB3[on_free], eq.B2[on_free])          # g×3 blocks of N₃₂
-    for prior, N, Lv in ((frame_prior, N11, L1), (point_prior, N22, L2)):
-        if prior is not None:
-            l, p = (np.asarray(a, dtype=float) for a in prior)
-            idx = np.arange(p.shape[1])
-            N[:, idx, idx] += p
-            Lv -= p * l
+    _add_priors(frame_prior, N11, L1)
+    _add_priors(point_prior, N22, L2)
     if global_prior is not None and g:
         l, p = (np.asarray(a, dtype=float).reshape(g) for a in global_prior)
         N33[np.arange(g), np.arange(g)] += p

@@ -57,7 +57,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .camera import ExteriorOrientation, InteriorOrientation, as_points
+from .camera import ExteriorOrientation, InteriorOrientation, as_point_pairs, as_points
 from .errors import DegenerateGeometryError, InputError
 from .lsq import Adjustment, accuracy, gauss_newton, point_weights, solve_normal_equations
 from .rotation import check_order, rotation_angles
@@ -366,12 +366,8 @@ def dlt_resection(XYZ, xy, method: str = "normalized", weights=None) -> DLTResec
         parallel to the image (no L₁₂ = 1 normalisation possible).
     """
     _check_method(method)
-    XYZ = as_points(XYZ, 3, "control point coordinates XYZ")
-    xy = as_points(xy, 2, "image coordinates xy")
-    if len(XYZ) != len(xy):
-        raise InputError(f"{len(XYZ)} control points but {len(xy)} image points")
-    if len(XYZ) < 6:
-        raise InputError(f"the projective resection needs at least 6 control points, got {len(XYZ)}")
+    XYZ, xy = as_point_pairs(XYZ, 3, xy, 2, ("control points XYZ", "image points xy"), 6,
+                             "the projective resection")
     _check_not_coplanar(XYZ, "the control points")
     n = len(XYZ)
     P = point_weights(weights, n)
@@ -790,12 +786,8 @@ def apply_homography(H, xy) -> np.ndarray:
 
 
 def _check_plane_points(src, dst):
-    src = as_points(src, 2, "source points")
-    dst = as_points(dst, 2, "destination points")
-    if len(src) != len(dst):
-        raise InputError(f"{len(src)} source points but {len(dst)} destination points")
-    if len(src) < 4:
-        raise InputError(f"a projective (8-parameter) transformation needs at least 4 points, got {len(src)}")
+    src, dst = as_point_pairs(src, 2, dst, 2, ("source points", "destination points"), 4,
+                              "a projective (8-parameter) transformation")
     for pts, what in ((src, "source"), (dst, "destination")):
         c = pts - pts.mean(axis=0)
         s = np.linalg.svd(c, compute_uv=False)

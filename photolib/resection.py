@@ -26,7 +26,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from . import derivations
-from .camera import ExteriorOrientation, InteriorOrientation, as_points, correct_distortion
+from .camera import ExteriorOrientation, InteriorOrientation, as_point_pairs, as_points, correct_distortion
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
 from .lsq import Adjustment, AdjustmentView, IterationRecord, gauss_newton, point_weights
 from .rotation import check_order
@@ -88,12 +88,7 @@ class AngleResectionResult(AdjustmentView):
 def _control_points(XYZ, xy, io):
     if not isinstance(io, InteriorOrientation):
         raise InputError(f"io must be an InteriorOrientation, got {type(io).__name__}")
-    XYZ = as_points(XYZ, 3, "control point coordinates XYZ")
-    xy = as_points(xy, 2, "image coordinates xy")
-    if len(XYZ) != len(xy):
-        raise InputError(f"{len(XYZ)} control points but {len(xy)} image points: shapes must match")
-    if len(XYZ) < 3:
-        raise InputError(f"a resection needs at least 3 control points, got {len(XYZ)}")
+    XYZ, xy = as_point_pairs(XYZ, 3, xy, 2, ("control points XYZ", "image points xy"), 3, "a resection")
     centred = XYZ - XYZ.mean(axis=0)
     sv = np.linalg.svd(centred, compute_uv=False)
     if sv[0] == 0 or sv[1] < 1e-9 * sv[0]:
