@@ -12,10 +12,10 @@ Modules mirror the book's chapters:
 * :mod:`photolib.image_pair` — image pair: intersection, relative and absolute orientation (Chapter 2)
 * :mod:`photolib.bundle`, :mod:`photolib.synthetic` — bundle adjustment (§3.5) and synthetic aerial blocks
 * :mod:`photolib.conventions` — conversions to Western, Hanzl's and OpenCV's conventions
-* :mod:`photolib.errata` — the errata list generated from ``textbook/``
+* :mod:`photolib.book.errata` — the errata list generated from ``textbook/``
 * :mod:`photolib.lsq` — the one least-squares engine, (1.8.5)–(1.8.10), with the block reduction of §3.5
 * :mod:`photolib.derivations` — sympy models and the Jacobians derived from them
-* :mod:`photolib.textbook`, :mod:`photolib.verify` — the book's published numbers and their check
+* :mod:`photolib.book.textbook`, :mod:`photolib.book.verify` — the book's published numbers and their check
 """
 
 __version__ = "0.1.0"

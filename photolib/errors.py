@@ -23,3 +23,23 @@ class ConvergenceError(PhotolibError, RuntimeError):
     def __init__(self, message, history=None):
         super().__init__(message)
         self.history = history or []
+
+
+class PointBehindCameraError(DegenerateGeometryError):
+    """A point lies behind (or in the plane of) a camera that is supposed to see it.
+
+    ``points`` holds the indices of the offending points (or observations) where known, so that
+    a caller can react to the condition itself instead of matching the message text.
+    """
+
+    def __init__(self, message, points=None):
+        super().__init__(message)
+        self.points = [] if points is None else list(points)
+
+
+class DegreesWarning(UserWarning):
+    """An angle larger than 2π in magnitude was passed where radians are expected."""
+
+
+__all__ = ["PhotolibError", "InputError", "DegenerateGeometryError", "ConvergenceError",
+           "PointBehindCameraError", "DegreesWarning"]

@@ -17,7 +17,7 @@ from photolib.camera import ExteriorOrientation, InteriorOrientation
 from photolib.errors import InputError
 from photolib.rotation import rotation_matrix
 from photolib.single_image import project
-from photolib.textbook import load_chapter
+from photolib.book.textbook import load_chapter
 
 PTS = [[1, 1000, 1000, 10, 5.229, -0.003, -52.662, 0.034], [2, 1500, 1000, 15, 57.529, -0.898, -1.741, -1.753],
        [3, 1000, 1500, 20, 6.149, 51.105, -50.923, 51.019], [4, 1000, 500, 10, 4.354, -50.536, -54.969, -51.353],
@@ -133,7 +133,7 @@ def test_input_rounding_bounds_are_justified_by_monte_carlo():
         rounding = [q for q in ex.quantities if q.status == "input-rounding"]
         if not rounding:
             continue
-        sigma = ch02.rounding_monte_carlo(ex.inputs, __import__("photolib.verify", fromlist=["resolve"]).resolve(ex.compute))
+        sigma = ch02.rounding_monte_carlo(ex.inputs, __import__("photolib.book.verify", fromlist=["resolve"]).resolve(ex.compute))
         for q in rounding:
             assert q.bound == pytest.approx(ch02.rounding_bound(sigma[q.name], q.decimals), abs=1e-12), q.name
             checked += 1

@@ -2,8 +2,8 @@
 
 import pytest
 
-from photolib.textbook import available_chapters, load_chapter
-from photolib.verify import check_example, check_formula, summary, verify
+from photolib.book.textbook import available_chapters, load_chapter
+from photolib.book.verify import check_example, check_formula, summary, verify
 
 EXAMPLES = [ex for n in available_chapters() for ex in load_chapter(n).examples]
 FORMULAS = [fm for n in available_chapters() for fm in load_chapter(n).formulas]
@@ -36,7 +36,7 @@ def test_status_rules_are_strict():
 
 
 def test_cli_exit_code_and_summary(capsys):
-    from photolib.cli import main
+    from photolib.book.cli import main
     assert main(["verify", "--chapter", "1"]) == 0
     out = capsys.readouterr().out
     assert "status no longer holds: 0" in out

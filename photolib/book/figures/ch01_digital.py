@@ -6,7 +6,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.patches import Rectangle
 
-from .. import digital, scanners
+from ... import digital, scanners
 
 
 def pixel_systems(n_rows: int = 6, n_cols: int = 7, pixel=(4, 3)):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..camera import distortion_correction
+from ...camera import distortion_correction
 
 
 def distortion_fields(true_io, recovered_io, half: float = 50.0, n: int = 9, scale: float | None = None):

@@ -8,8 +8,8 @@ import numpy as np
 from matplotlib.colors import ListedColormap
 from matplotlib.patches import Rectangle
 
-from ..synthetic import CONTROL
-from ..triangulation_layouts import BookBlock, BundleSystem, images_per_point
+from ...synthetic import CONTROL
+from ...triangulation_layouts import BookBlock, BundleSystem, images_per_point
 
 ROW_SHADE = {"tie": 0.45, "control": 0.9, "ground": 0.65, "gnss": 0.65, "ins": 0.65}
 

@@ -1,4 +1,4 @@
-"""The Errata appendix is generated from textbook/: photolib.errata on a synthetic chapter file."""
+"""The Errata appendix is generated from textbook/: photolib.book.errata on a synthetic chapter file."""
 
 import sys
 import types
@@ -6,7 +6,7 @@ import types
 import pytest
 
 from photolib import errata as er
-from photolib.textbook import load_chapter
+from photolib.book.textbook import load_chapter
 
 CHAPTER = '''
 chapter = 7

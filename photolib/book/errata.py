@@ -1,7 +1,7 @@
 """The book's errata, generated from ``textbook/`` — the source of Appendix B of the companion.
 
 Nothing here is hard-coded: every record comes from an entry of ``textbook/chNN.toml`` (read with
-:mod:`photolib.textbook`) whose status is
+:mod:`photolib.book.textbook`) whose status is
 
 * ``erratum`` — an ``[[example.quantity]]`` or a ``[[formula]]`` the book gets wrong; the record
   holds what is printed, what is correct, the diagnosis and how it was proved, and — for examples
@@ -63,12 +63,12 @@ def _value_text(q) -> str:
 
 def _as_printed_runs(example) -> dict:
     """{quantity name: (value text, reproduces the printed value?)} from the "as printed" computation."""
-    from .verify import _format, matches_printed, resolve
+    from .verify import format_value, matches_printed, resolve
     values = resolve(example.as_printed_compute)(example.inputs)
     out = {}
     for q in example.quantities:
         v = values.get(q.name)
-        out[q.name] = (_format(v, q.decimals) if v is not None else "", matches_printed(v, q.value, q.decimals))
+        out[q.name] = (format_value(v, q.decimals) if v is not None else "", matches_printed(v, q.value, q.decimals))
     return out
 
 

@@ -25,11 +25,11 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import projective
-from ..camera import ExteriorOrientation, InteriorOrientation
-from ..errors import DegenerateGeometryError
-from ..rotation import rot_y
-from ..single_image import project
+from ... import projective
+from ...camera import ExteriorOrientation, InteriorOrientation
+from ...errors import DegenerateGeometryError
+from ...rotation import rot_y
+from ...single_image import project
 
 
 def _done(fig):

@@ -55,7 +55,7 @@ def _is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
-def _format(value, decimals) -> str:
+def format_value(value, decimals) -> str:
     if value is None:
         return "—"
     if isinstance(value, bool):
@@ -111,8 +111,8 @@ def check_example(example: Example) -> list[Row]:
             ok = value is None or same
         if not ok and value is None and q.status != "transcribed":
             detail = "nothing computed for this quantity"
-        rows.append(Row(example.chapter, example.id, q.name, q.printed, _format(value, q.decimals),
-                        q.status, ok, detail, _format(printed_run, q.decimals) if printed_run is not None else ""))
+        rows.append(Row(example.chapter, example.id, q.name, q.printed, format_value(value, q.decimals),
+                        q.status, ok, detail, format_value(printed_run, q.decimals) if printed_run is not None else ""))
     return rows
 
 

@@ -3,32 +3,44 @@
 One TOML file per chapter (format in ``textbook/README.md``). Each ``[[example]]`` holds the
 inputs as printed and one ``[[example.quantity]]`` per published number with its printed
 decimals, unit and status; each ``[[formula]]`` records a printed formula checked against
-sympy. This module only reads and validates; :mod:`photolib.verify` recomputes.
+sympy. This module only reads and validates; :mod:`photolib.book.verify` recomputes.
 """
 
 from __future__ import annotations
 
+import os
 import tomllib
 from dataclasses import dataclass, field
 from functools import lru_cache
+from importlib import resources
 from pathlib import Path
 
-from .errors import InputError
+from ..errors import InputError
 
 STATUSES = ("reproduced", "input-rounding", "erratum", "not-reproducible", "transcribed")
 
 
 def textbook_dir() -> Path:
-    """The ``textbook/`` folder: beside the package in a checkout, or $PHOTOLIB_TEXTBOOK."""
-    import os
+    """The folder of published numbers.
+
+    In order: ``$PHOTOLIB_TEXTBOOK``; the ``textbook/`` folder of a source checkout (an editable
+    install reads the files being edited); the copy packaged with an installed wheel
+    (``photolib.book.published``, built from ``textbook/`` by ``pyproject.toml``).
+    """
     env = os.environ.get("PHOTOLIB_TEXTBOOK")
     if env:
         return Path(env)
-    here = Path(__file__).resolve().parent
-    for candidate in (here.parent / "textbook", here / "_textbook"):
-        if candidate.is_dir():
-            return candidate
-    raise FileNotFoundError("textbook/ not found: run from a checkout or set PHOTOLIB_TEXTBOOK")
+    checkout = Path(__file__).resolve().parents[2] / "textbook"
+    if (checkout / "ch01.toml").is_file():
+        return checkout
+    try:
+        packaged = Path(str(resources.files("photolib.book.published")))
+    except ModuleNotFoundError:
+        packaged = None
+    if packaged is not None and (packaged / "ch01.toml").is_file():
+        return packaged
+    raise FileNotFoundError("the published numbers were not found: neither a checkout's textbook/ nor "
+                            "the packaged photolib.book.published; set PHOTOLIB_TEXTBOOK to the folder")
 
 
 @dataclass

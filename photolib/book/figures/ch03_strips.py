@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.patches import Rectangle
 
-from .. import strip_triangulation as st
+from ... import strip_triangulation as st
 
 
 def _done(fig):

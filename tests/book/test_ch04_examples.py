@@ -15,8 +15,8 @@ from photolib.book import ch04
 from photolib.book.ch02 import rounding_bound
 from photolib.camera import ExteriorOrientation, InteriorOrientation
 from photolib.single_image import project
-from photolib.textbook import load_chapter
-from photolib.verify import resolve
+from photolib.book.textbook import load_chapter
+from photolib.book.verify import resolve
 
 # seed lines 2760–2769 and 2939–2950
 PTS43 = [[1, 1000, 1000, 100, 8.760, -3.498, -48.295, -4.717], [2, 1500, 1000, -30, 59.597, -9.719, 5.276, -12.280],

@@ -6,9 +6,9 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import conventions as cv
-from ..camera import correct_distortion
-from ..rotation import rot_x, rot_y, rot_z
+from ... import conventions as cv
+from ...camera import correct_distortion
+from ...rotation import rot_x, rot_y, rot_z
 
 _COLORS = ("tab:red", "tab:green", "tab:blue")
 

@@ -15,9 +15,9 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..camera import ExteriorOrientation, InteriorOrientation
-from ..rotation import rot_x, rot_y, rot_z, rotation_matrix
-from ..single_image import (
+from ...camera import ExteriorOrientation, InteriorOrientation
+from ...rotation import rot_x, rot_y, rot_z, rotation_matrix
+from ...single_image import (
     planimetric_error_from_height_error, principal_to_nadir_distance, project, tilted_to_horizontal,
 )
 

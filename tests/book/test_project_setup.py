@@ -3,7 +3,7 @@
 import re
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _readme_commands():
@@ -37,7 +37,7 @@ def test_verify_needs_no_test_only_package():
     code = ("import sys\n"
             "for name in ('cv2', 'pytest', 'hypothesis', 'nbval'):\n"
             "    sys.modules[name] = None\n"
-            "from photolib.cli import main\n"
+            "from photolib.book.cli import main\n"
             "sys.exit(main(['verify', '--json']))\n")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=600)
     assert done.returncode == 0, done.stderr[-2000:]

@@ -22,10 +22,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-from .. import image_pair
-from ..book import ch02_theory
-from ..camera import ExteriorOrientation, InteriorOrientation
-from ..single_image import project
+from ... import image_pair
+from ... import ch02_theory
+from ...camera import ExteriorOrientation, InteriorOrientation
+from ...single_image import project
 
 
 def _done(fig):

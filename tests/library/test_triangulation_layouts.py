@@ -11,7 +11,7 @@ from photolib import triangulation_layouts as tl
 from photolib.book import ch03
 from photolib.errors import InputError
 from photolib.lsq import solve_normal_equations, solve_partitioned_normal_equations
-from photolib.textbook import load_chapter
+from photolib.book.textbook import load_chapter
 
 
 @pytest.fixture(scope="module")

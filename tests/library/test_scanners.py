@@ -6,7 +6,7 @@ import pytest
 
 from photolib import scanners
 from photolib.errors import InputError
-from photolib.textbook import load_chapter
+from photolib.book.textbook import load_chapter
 
 
 def test_table_1_1_has_4_scanners_by_8_rows():
