@@ -33,11 +33,8 @@ def textbook_dir() -> Path:
     checkout = Path(__file__).resolve().parents[2] / "textbook"
     if (checkout / "ch01.toml").is_file():
         return checkout
-    try:
-        packaged = Path(str(resources.files("photolib.book.published")))
-    except ModuleNotFoundError:
-        packaged = None
-    if packaged is not None and (packaged / "ch01.toml").is_file():
+    packaged = Path(str(resources.files("photolib.book"))) / "published"
+    if (packaged / "ch01.toml").is_file():
         return packaged
     raise FileNotFoundError("the published numbers were not found: neither a checkout's textbook/ nor "
                             "the packaged photolib.book.published; set PHOTOLIB_TEXTBOOK to the folder")
