@@ -5,7 +5,6 @@ import pytest
 import sympy as sp
 
 from photolib import derivations as d
-from photolib.book.ch01_resection import angle_reconstruction_check
 
 # Book statuses (textbook fragment): of the twelve printed coefficients only b4 is right.
 AGREE = {"b4"}
@@ -86,8 +85,3 @@ def test_printed_angle_partials_equal_sympy(name):
     var = {"a1": d.Xs, "b1": d.Ys, "c1": d.Zs}[name]
     derived = sp.diff(model.residuals[0], var)
     assert sp.simplify(d.printed_angle_equality_partials()[name] - derived) == 0
-
-
-def test_reconstructed_angle_equation_gives_printed_partials():
-    for eq in ("1.9.1", "1.9.2"):
-        assert angle_reconstruction_check({"equation": eq}) == {"printed_equals_derived": False}

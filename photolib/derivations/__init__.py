@@ -1,0 +1,57 @@
+"""Model equations in sympy and the Jacobians derived from them — the one place for derivatives.
+
+Each photogrammetric problem is written once as sympy expressions of its unknowns
+(*parameters*) and its known quantities (*data*). The library never types a partial derivative
+by hand: :meth:`Model.compile` differentiates the expressions with sympy and turns residuals
+and Jacobian into vectorised numpy functions (printed once into the committed module
+``_generated.py``, see :mod:`photolib.derivations.model`).
+
+The book's own printed derivatives are transcribed here too (``printed_*``), so that tests and
+notebooks can compare them with the derived ones (``derived_*``) term by term and the
+"as printed" modes can reproduce what the book computed with them.
+
+Modules, by topic:
+
+* :mod:`~photolib.derivations.symbols` — the shared sympy symbols.
+* :mod:`~photolib.derivations.model` — :class:`Model`, compilation and code generation.
+* :mod:`~photolib.derivations.rotation` — rotation matrices, Chapter 1, §1.3 (1.3.1)–(1.3.5).
+* :mod:`~photolib.derivations.quaternion` — the quaternion matrix (1.3.7).
+* :mod:`~photolib.derivations.distortion` — Brown's distortion, §1.2 (1.2.2)/(1.2.3) and (3.6.2).
+* :mod:`~photolib.derivations.collinearity` — collinearity and resection, §1.8–§1.9.
+* :mod:`~photolib.derivations.intersection` — forward intersection, Chapter 2, §2.4.
+* :mod:`~photolib.derivations.coplanarity` — relative orientation, §2.7–§2.8.
+* :mod:`~photolib.derivations.similarity` — absolute orientation of a model, §2.10–§2.11.
+* :mod:`~photolib.derivations.bundle` — bundle method, self-calibration, rigs, rolling
+  shutter, Chapter 3, §3.5–§3.9.
+* :mod:`~photolib.derivations.projective` — the homography, §1.7 and Chapter 4, §4.1.
+* :mod:`~photolib.derivations.gnss` — the GNSS-centres paper (appendix).
+
+Every public name of these modules is available here: ``from photolib import derivations;
+derivations.collinearity_model("kaw")``.
+
+Examples
+--------
+>>> from photolib import derivations
+>>> derivations.collinearity_model("kaw").jacobian().shape
+(2, 6)
+"""
+
+from . import (bundle, collinearity, coplanarity, distortion, gnss, intersection, model, projective, quaternion,
+               rotation, similarity, symbols)
+from .bundle import *  # noqa: F401,F403
+from .collinearity import *  # noqa: F401,F403
+from .coplanarity import *  # noqa: F401,F403
+from .coplanarity import _IMAGE1_SUBS  # noqa: F401 — used by the book's tests
+from .distortion import *  # noqa: F401,F403
+from .gnss import *  # noqa: F401,F403
+from .intersection import *  # noqa: F401,F403
+from .model import *  # noqa: F401,F403
+from .projective import *  # noqa: F401,F403
+from .quaternion import *  # noqa: F401,F403
+from .rotation import *  # noqa: F401,F403
+from .similarity import *  # noqa: F401,F403
+from .symbols import *  # noqa: F401,F403
+
+__all__ = [name for module in (symbols, model, rotation, quaternion, distortion, collinearity, intersection,
+                               coplanarity, similarity, bundle, projective, gnss)
+           for name in module.__all__]
