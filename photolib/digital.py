@@ -29,24 +29,34 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import InputError
+from .rotation import _numbers
+
+__all__ = ["ORIGINS", "pixel_center", "subpixel_coordinates", "pixel_to_physical", "flip_rows", "flip_y",
+           "bilinear", "shift_image"]
 
 ORIGINS = ("corner", "center")
 
 
 def _origin_offset(origin: str) -> float:
-    if origin not in ORIGINS:
+    if not isinstance(origin, str) or origin not in ORIGINS:
         raise InputError(f"origin must be 'corner' or 'center', got {origin!r}")
     return 0.5 if origin == "corner" else 0.0
 
 
 def _finite(name, value):
-    arr = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(arr)):
-        raise InputError(f"{name} contains NaN or inf")
-    return arr
+    return _numbers(value, name)
+
+
+def _rows(n_rows) -> int:
+    arr = _numbers(n_rows, "n_rows")
+    if arr.ndim != 0 or arr != np.round(arr) or arr < 1:
+        raise InputError(f"n_rows must be a whole number ≥ 1, got {n_rows!r}")
+    return int(arr)
 
 
 def _index(name, value):
+    if isinstance(value, (str, bytes)):
+        raise InputError(f"{name} must be integers, got {value!r}")
     arr = np.asarray(value)
     if arr.dtype.kind == "f":
         if not np.all(np.isfinite(arr)):
@@ -79,6 +89,20 @@ def pixel_center(i, j, origin: str = "corner"):
     Returns
     -------
     x_p, y_p : float or array, in pixels.
+
+    Raises
+    ------
+    InputError
+        Negative or fractional indices, NaN/inf, non-numbers, an unknown origin.
+
+    References
+    ----------
+    Chibunichev (2022), §1.10, eqs. (1.10.1), (1.10.4), Figs. 1.19–1.21.
+
+    Examples
+    --------
+    >>> pixel_center(2, 3), pixel_center(2, 3, origin="center")
+    ((3.5, 2.5), (3.0, 2.0))
     """
     off = _origin_offset(origin)
     i, j = _index("row i", i), _index("column j", j)
@@ -105,6 +129,27 @@ def subpixel_coordinates(i, j, i_sub, j_sub, n, origin: str = "corner"):
         Row i' and column j' inside the n×n block, 0 ≤ i', j' < n.
     n : int
         Magnification, a positive integer.
+    origin : {"corner", "center"}
+        As for :func:`pixel_center`.
+
+    Returns
+    -------
+    x_p, y_p : float or array
+        In pixels of the original image.
+
+    Raises
+    ------
+    InputError
+        Bad indices (negative, fractional, i' or j' ≥ n), n < 1, NaN/inf, non-numbers.
+
+    References
+    ----------
+    Chibunichev (2022), §1.10, eqs. (1.10.2), (1.10.5).
+
+    Examples
+    --------
+    >>> subpixel_coordinates(0, 0, 0, 1, 2)
+    (0.75, 0.25)
     """
     n_arr = np.asarray(n)
     if n_arr.dtype.kind not in "iu" and not (n_arr.dtype.kind == "f" and np.all(np.isfinite(n_arr))
@@ -127,6 +172,32 @@ def pixel_to_physical(x_p, y_p, pixel_size):
 
     ``pixel_size`` Δ is the side of the (square) pixel; the result is in its unit. The inverse,
     x_p = x̄/Δ of (1.11.5), is ``pixel_to_physical(x, y, 1/Δ)``.
+
+    Parameters
+    ----------
+    x_p, y_p : float or array
+        Pixel coordinates.
+    pixel_size : float
+        Δ, > 0.
+
+    Returns
+    -------
+    x_c, y_c : float or array
+        In the unit of Δ.
+
+    Raises
+    ------
+    InputError
+        NaN/inf, non-numbers, Δ ≤ 0.
+
+    References
+    ----------
+    Chibunichev (2022), §1.10, eq. (1.10.3); §1.11, eq. (1.11.5).
+
+    Examples
+    --------
+    >>> pixel_to_physical(100.5, 20.5, 0.01)
+    (1.005, 0.205)
     """
     x_p, y_p = _finite("x_p", x_p), _finite("y_p", y_p)
     d = _finite("pixel size", pixel_size)
@@ -140,10 +211,34 @@ def flip_rows(i, n_rows):
 
     i' = n_rows − 1 − i. The map is its own inverse (an involution), so the same call converts
     either way.
+
+    Parameters
+    ----------
+    i : int or array of int
+        Row index, 0 ≤ i < n_rows.
+    n_rows : int
+        Number of rows of the image, ≥ 1.
+
+    Returns
+    -------
+    int or ndarray
+        The row index counted from the other side.
+
+    Raises
+    ------
+    InputError
+        Indices out of range, fractional or negative, n_rows < 1, non-numbers.
+
+    References
+    ----------
+    Chibunichev (2022), §1.10, Fig. 1.19.
+
+    Examples
+    --------
+    >>> flip_rows(0, 6)
+    5
     """
-    n_rows = int(n_rows)
-    if n_rows < 1:
-        raise InputError(f"n_rows must be ≥ 1, got {n_rows}")
+    n_rows = _rows(n_rows)
     arr = _index("row i", i)
     if np.any(arr > n_rows - 1):
         raise InputError(f"row index out of range 0..{n_rows - 1}: {i!r}")
@@ -156,17 +251,48 @@ def flip_y(y_p, n_rows, origin: str = "corner"):
 
     ``"corner"``: y' = n_rows − y; ``"center"``: y' = (n_rows − 1) − y. An involution, like
     :func:`flip_rows`; x is the same in both systems.
+
+    Parameters
+    ----------
+    y_p : float or array
+        y pixel coordinate in one system.
+    n_rows : int
+        Number of rows of the image, ≥ 1.
+    origin : {"corner", "center"}
+        Where the pixel coordinates have their origin.
+
+    Returns
+    -------
+    float or ndarray
+        y in the other system.
+
+    Raises
+    ------
+    InputError
+        NaN/inf, non-numbers, n_rows < 1, an unknown origin.
+
+    References
+    ----------
+    Chibunichev (2022), §1.10, Fig. 1.19.
+
+    Examples
+    --------
+    >>> flip_y(0.5, 6)
+    5.5
     """
     off = _origin_offset(origin)
     y_p = _finite("y_p", y_p)
-    if int(n_rows) < 1:
-        raise InputError(f"n_rows must be ≥ 1, got {n_rows}")
+    n_rows = _rows(n_rows)
     # corner: off = 0.5 → n_rows − y; center: off = 0 → (n_rows − 1) − y
     return _out(n_rows - 1 + 2 * off - y_p)
 
 
 def _as_image(image):
+    if isinstance(image, (str, bytes)):
+        raise InputError(f"image must be an array of numbers, got {type(image).__name__}")
     img = np.asarray(image)
+    if img.dtype.kind not in "biuf":
+        img = _numbers(img, "image")
     if img.ndim not in (2, 3) or (img.ndim == 3 and img.shape[2] < 1):
         raise InputError(f"image must be (H, W) or (H, W, channels), got shape {img.shape}")
     if img.shape[0] < 2 or img.shape[1] < 2:
@@ -216,9 +342,28 @@ def bilinear(image, x_p, y_p):
     Returns
     -------
     float array of the broadcast shape of ``x_p, y_p`` (plus the channel axis for colour).
+
+    Raises
+    ------
+    InputError
+        A position outside the pixel centres, an image smaller than 2×2 or of a wrong shape,
+        NaN/inf, non-numbers.
+
+    References
+    ----------
+    Chibunichev (2022), §1.10, eq. (1.10.7).
+
+    Examples
+    --------
+    >>> bilinear([[0.0, 10.0], [20.0, 30.0]], 1.0, 1.0)
+    15.0
     """
     img = _as_image(image)
-    x, y = np.broadcast_arrays(_finite("x_p", x_p), _finite("y_p", y_p))
+    xf, yf = _finite("x_p", x_p), _finite("y_p", y_p)
+    try:
+        x, y = np.broadcast_arrays(xf, yf)
+    except ValueError:
+        raise InputError(f"x_p and y_p have shapes {np.shape(x_p)}, {np.shape(y_p)} that do not broadcast") from None
     h, w = img.shape[:2]
     outside = (x < 0.5) | (x > w - 0.5) | (y < 0.5) | (y > h - 0.5)
     if np.any(outside):
@@ -242,12 +387,44 @@ def shift_image(image, dx_p, dy_p, fill=np.nan):
 
     Parameters
     ----------
+    image : array (H, W) or (H, W, C)
+        The original image, ``image[row, col]``.
+    dx_p, dy_p : float
+        The shift Δx_p, Δy_p in pixels.
     fill : float or None
         Value of fragment pixels whose source lies outside the original pixel centres; ``None``
         raises :class:`InputError` instead.
+
+    Returns
+    -------
+    ndarray
+        The resampled fragment, of the shape of ``image``.
+
+    Raises
+    ------
+    InputError
+        NaN/inf, non-numbers, a bad image, or (with ``fill=None``) a shift leaving the image.
+
+    References
+    ----------
+    Chibunichev (2022), §1.10, eqs. (1.10.6)–(1.10.7).
+
+    Examples
+    --------
+    >>> shift_image([[0.0, 10.0], [20.0, 30.0]], 0.5, 0.0)
+    array([[ 5., nan],
+           [25., nan]])
     """
     img = _as_image(image)
-    dx, dy = float(_finite("dx_p", dx_p)), float(_finite("dy_p", dy_p))
+    dx, dy = _finite("dx_p", dx_p), _finite("dy_p", dy_p)
+    if dx.ndim or dy.ndim:
+        raise InputError("the shift dx_p, dy_p must be two numbers")
+    dx, dy = float(dx), float(dy)
+    if fill is not None:
+        fill_arr = _numbers(fill, "fill") if not (isinstance(fill, float) and np.isnan(fill)) else np.asarray(fill)
+        if fill_arr.ndim:
+            raise InputError("fill must be one number or None")
+        fill = float(fill_arr)
     h, w = img.shape[:2]
     yy, xx = np.mgrid[0:h, 0:w] + 0.5
     xs, ys = xx + dx, yy + dy                       # (1.10.6)

@@ -33,19 +33,44 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .camera import as_points
+from .camera import _scalar, as_points
 from .errors import DegenerateGeometryError, InputError
 from .lsq import accuracy, solve_normal_equations
+from .rotation import _numbers
+
+__all__ = ["AffineTransform", "fit_affine", "apply_affine", "invert_affine", "FiducialSimilarity",
+           "fiducial_similarity", "similarity_forward", "similarity_inverse", "AFFINE_NAMES"]
 
 AFFINE_NAMES = ("a0", "a1", "a2", "b0", "b1", "b2")
 
 
-@dataclass
+@dataclass(repr=False)
 class AffineTransform:
     """Parameters of (1.11.1), x = a0 + a1·x̄ + a2·ȳ, y = b0 + b1·x̄ + b2·ȳ, with their accuracy.
 
-    ``mu`` is μ of (1.8.9) in the unit of the calibrated coordinates (NaN with no redundancy),
-    ``std`` the m_j of (1.8.8) per parameter, ``residuals`` the ϑ_x, ϑ_y of (1.11.2) per fiducial.
+    Attributes
+    ----------
+    a0, a1, a2, b0, b1, b2 : float
+        The six parameters (a0, b0 in the unit of the calibrated coordinates).
+    mu : float
+        μ of (1.8.9) in the unit of the calibrated coordinates (NaN with no redundancy).
+    std : dict
+        m_j of (1.8.8) per parameter.
+    residuals : ndarray or None
+        ϑ_x, ϑ_y of (1.11.2) per fiducial, (n, 2).
+    dof : int
+        Redundancy 2n − 6.
+    Q : ndarray or None
+        The cofactor matrix of the parameters.
+
+    References
+    ----------
+    Chibunichev (2022), §1.11, eqs. (1.11.1)–(1.11.4).
+
+    Examples
+    --------
+    >>> AffineTransform(1.0, 1.0, 0.0, 2.0, 0.0, 1.0)
+    AffineTransform(a0=1, a1=1, a2=0, b0=2, b1=0, b2=1)
     """
 
     a0: float
@@ -60,8 +85,19 @@ class AffineTransform:
     dof: int = 0
     Q: np.ndarray | None = None
 
+    def __post_init__(self):
+        for k in AFFINE_NAMES:
+            _scalar(getattr(self, k), f"affine parameter {k}")
+
+    def __repr__(self) -> str:
+        body = ", ".join(f"{k}={float(getattr(self, k)):.10g}" for k in AFFINE_NAMES)
+        if self.dof > 0 and np.isfinite(self.mu):
+            body += f", μ={float(self.mu):.3g}, {self.dof} redundant"
+        return f"AffineTransform({body})"
+
     @property
     def params(self) -> dict:
+        """The six parameters by name."""
         return {k: getattr(self, k) for k in AFFINE_NAMES}
 
     @property
@@ -87,12 +123,10 @@ def _as_affine(params) -> AffineTransform:
             raise InputError(f"affine parameters lack {', '.join(missing)}")
         values = [params[k] for k in AFFINE_NAMES]
     else:
-        values = list(np.asarray(params, dtype=float).ravel())
+        values = list(_numbers(params, "affine parameters").ravel())
         if len(values) != 6:
             raise InputError(f"expected 6 affine parameters a0, a1, a2, b0, b1, b2, got {len(values)}")
-    values = [float(v) for v in values]
-    if not np.all(np.isfinite(values)):
-        raise InputError("affine parameters contain NaN or inf")
+    values = [_scalar(v, f"affine parameter {k}") for k, v in zip(AFFINE_NAMES, values)]
     return AffineTransform(*values)
 
 
@@ -131,6 +165,23 @@ def fit_affine(measured, calibrated, weights=None) -> AffineTransform:
     Returns
     -------
     AffineTransform
+
+    Raises
+    ------
+    InputError
+        Fewer than 3 fiducials, different counts, NaN/inf, bad weights.
+    DegenerateGeometryError
+        Coincident or collinear fiducials.
+
+    References
+    ----------
+    Chibunichev (2022), §1.11, eqs. (1.11.1)–(1.11.2); §1.8, eqs. (1.8.8)–(1.8.9).
+
+    Examples
+    --------
+    >>> t = fit_affine([[0, 0], [10, 0], [0, 10]], [[1, 2], [11, 2], [1, 12]])
+    >>> round(t.a0, 9), round(t.a1, 9), round(t.b2, 9)
+    (1.0, 1.0, 1.0)
     """
     meas = as_points(measured, 2, "measured fiducials")
     cal = as_points(calibrated, 2, "calibrated fiducials")
@@ -138,6 +189,12 @@ def fit_affine(measured, calibrated, weights=None) -> AffineTransform:
         raise InputError(f"measured and calibrated fiducials differ in number: {len(meas)} vs {len(cal)}")
     _check_spread(meas, "measured fiducials", 3)
     n = len(meas)
+    if weights is not None:
+        w = _numbers(weights, "weights")
+        if w.shape != (2 * n,):
+            raise InputError(f"weights: one per equation expected, shape ({2 * n},), got {w.shape}")
+        if np.any(w <= 0):
+            raise InputError("weights must be positive")
     # B·δ + L = V with the approximation 0: L = model(0) − observed = −(x, y)
     B = np.zeros((2 * n, 6))
     B[0::2, 0], B[0::2, 1], B[0::2, 2] = 1.0, meas[:, 0], meas[:, 1]
@@ -156,7 +213,34 @@ def fit_affine(measured, calibrated, weights=None) -> AffineTransform:
 
 
 def apply_affine(params, measured):
-    """Camera coordinates from scanner coordinates, (1.11.1): (x, y) = (a0, b0) + P·(x̄, ȳ)."""
+    """Camera coordinates from scanner coordinates, (1.11.1): (x, y) = (a0, b0) + P·(x̄, ȳ).
+
+    Parameters
+    ----------
+    params : AffineTransform, dict or 6 numbers
+        a0, a1, a2, b0, b1, b2.
+    measured : (2,) or (n, 2) array
+        Scanner coordinates x̄, ȳ.
+
+    Returns
+    -------
+    ndarray
+        (2,) or (n, 2) camera coordinates x, y.
+
+    Raises
+    ------
+    InputError
+        Missing or non-finite parameters, wrong shapes, NaN/inf.
+
+    References
+    ----------
+    Chibunichev (2022), §1.11, eq. (1.11.1).
+
+    Examples
+    --------
+    >>> apply_affine([1, 1, 0, 2, 0, 1], [3.0, 4.0])
+    array([4., 6.])
+    """
     t = _as_affine(params)
     pts = as_points(measured, 2, "measured points")
     out = np.array([t.a0, t.b0]) + pts @ t.P.T
@@ -167,6 +251,34 @@ def invert_affine(params, image_xy):
     """Scanner coordinates from camera coordinates, (1.11.3)–(1.11.4).
 
     x̄ = A1(x − a0) + A2(y − b0), ȳ = B1(x − a0) + B2(y − b0), with [[A1, A2], [B1, B2]] = P⁻¹.
+
+    Parameters
+    ----------
+    params : AffineTransform, dict or 6 numbers
+        a0, a1, a2, b0, b1, b2.
+    image_xy : (2,) or (n, 2) array
+        Camera coordinates x, y.
+
+    Returns
+    -------
+    ndarray
+        (2,) or (n, 2) scanner coordinates x̄, ȳ.
+
+    Raises
+    ------
+    InputError
+        Missing or non-finite parameters, wrong shapes, NaN/inf.
+    DegenerateGeometryError
+        P is singular.
+
+    References
+    ----------
+    Chibunichev (2022), §1.11, eqs. (1.11.3)–(1.11.4).
+
+    Examples
+    --------
+    >>> invert_affine([1, 1, 0, 2, 0, 1], [4.0, 6.0])
+    array([3., 4.])
     """
     t = _as_affine(params)
     pts = as_points(image_xy, 2, "image points")
@@ -174,9 +286,28 @@ def invert_affine(params, image_xy):
     return out[0] if np.ndim(image_xy) == 1 else out
 
 
-@dataclass
+@dataclass(repr=False)
 class FiducialSimilarity:
-    """Parameters of (1.11.6): origin (a0, b0) in the scanner system, angle φ, scales k_x, k_y."""
+    """Parameters of (1.11.6): origin (a0, b0) in the scanner system, angle φ, scales k_x, k_y.
+
+    Parameters
+    ----------
+    a0, b0 : float
+        Origin of the fiducial system in scanner coordinates.
+    phi : float
+        Rotation angle φ in radians.
+    kx, ky : float
+        Scales along x and y (> 0).
+
+    References
+    ----------
+    Chibunichev (2022), §1.11, eqs. (1.11.6)–(1.11.10).
+
+    Examples
+    --------
+    >>> FiducialSimilarity(100.0, 50.0, 0.01, 1.0, 1.0)
+    FiducialSimilarity(a0=100, b0=50, phi=0.57295780°, kx=1, ky=1)
+    """
 
     a0: float
     b0: float
@@ -184,12 +315,24 @@ class FiducialSimilarity:
     kx: float
     ky: float
 
+    def __post_init__(self):
+        for k in ("a0", "b0", "phi", "kx", "ky"):
+            _scalar(getattr(self, k), f"similarity parameter {k}")
+        if self.kx <= 0 or self.ky <= 0:
+            raise InputError(f"the scales kx, ky must be positive, got {self.kx}, {self.ky}")
+
+    def __repr__(self) -> str:
+        return (f"FiducialSimilarity(a0={float(self.a0):.10g}, b0={float(self.b0):.10g}, "
+                f"phi={np.degrees(float(self.phi)):.8f}°, kx={float(self.kx):.10g}, ky={float(self.ky):.10g})")
+
     @property
     def a1(self) -> float:
+        """a1 = cos φ."""
         return float(np.cos(self.phi))
 
     @property
     def a2(self) -> float:
+        """a2 = sin φ."""
         return float(np.sin(self.phi))
 
 
@@ -219,12 +362,33 @@ def fiducial_similarity(measured, Lx, Ly) -> FiducialSimilarity:
         3, 4 on the y axis with 3 towards +y).
     Lx, Ly : float
         Calibrated distances 1–2 and 4–3, in the unit wanted for x, y.
+
+    Returns
+    -------
+    FiducialSimilarity
+
+    Raises
+    ------
+    InputError
+        Not 4 marks, NaN/inf, non-positive distances.
+    DegenerateGeometryError
+        Coincident marks or parallel lines 1–2 and 3–4.
+
+    References
+    ----------
+    Chibunichev (2022), §1.11, eqs. (1.11.6)–(1.11.9).
+
+    Examples
+    --------
+    >>> t = fiducial_similarity([[-106, 0], [106, 0], [0, 106], [0, -106]], 212.0, 212.0)
+    >>> t.a0, t.b0, t.phi, t.kx
+    (0.0, 0.0, 0.0, 1.0)
     """
     pts = as_points(measured, 2, "measured fiducials")
     if pts.shape != (4, 2):
         raise InputError(f"fiducial_similarity needs exactly 4 marks (4×2), got {pts.shape}")
-    Lx, Ly = float(Lx), float(Ly)
-    if not (np.isfinite(Lx) and np.isfinite(Ly)) or Lx <= 0 or Ly <= 0:
+    Lx, Ly = _scalar(Lx, "Lx"), _scalar(Ly, "Ly")
+    if Lx <= 0 or Ly <= 0:
         raise InputError(f"calibrated distances must be positive numbers, got Lx={Lx}, Ly={Ly}")
     p1, p2, p3, p4 = pts
     len12, len43 = np.hypot(*(p2 - p1)), np.hypot(*(p3 - p4))
@@ -233,10 +397,10 @@ def fiducial_similarity(measured, Lx, Ly) -> FiducialSimilarity:
         raise DegenerateGeometryError("coincident fiducials: marks 1 and 2 (or 3 and 4) are at the same place")
     a0, b0 = _line_intersection(p1, p2, p3, p4)
     phi = float(np.arctan2(p2[1] - p1[1], p2[0] - p1[0]))
-    return FiducialSimilarity(float(a0), float(b0), phi, Lx / len12, Ly / len43)
+    return FiducialSimilarity(float(a0), float(b0), phi, float(Lx / len12), float(Ly / len43))
 
 
-def book_origin(measured):
+def _book_origin(measured):
     """(1.11.7) exactly as printed, with the slopes c₁ and c₂ (fails when line 3–4 is vertical)."""
     p = as_points(measured, 2, "measured fiducials")
     (x1, y1), (x2, y2), (x3, y3), (x4, y4) = p
@@ -251,7 +415,11 @@ def _as_similarity(params) -> FiducialSimilarity:
     if isinstance(params, FiducialSimilarity):
         return params
     if isinstance(params, dict):
-        return FiducialSimilarity(**{k: float(params[k]) for k in ("a0", "b0", "phi", "kx", "ky")})
+        missing = [k for k in ("a0", "b0", "phi", "kx", "ky") if k not in params]
+        if missing:
+            raise InputError(f"similarity parameters lack {', '.join(missing)}")
+        return FiducialSimilarity(**{k: _scalar(params[k], f"similarity parameter {k}")
+                                     for k in ("a0", "b0", "phi", "kx", "ky")})
     raise InputError("similarity parameters must be a FiducialSimilarity or a dict with a0, b0, phi, kx, ky")
 
 
@@ -262,6 +430,32 @@ def similarity_forward(params, measured):
         a1 = cos φ, a2 = sin φ.
 
     (The OCR of (1.11.6) dropped the a2 and a1 in front of (ȳ − b0).)
+
+    Parameters
+    ----------
+    params : FiducialSimilarity or dict
+        a0, b0, phi, kx, ky.
+    measured : (2,) or (n, 2) array
+        Scanner coordinates x̄, ȳ.
+
+    Returns
+    -------
+    ndarray
+        (2,) or (n, 2) camera coordinates x, y.
+
+    Raises
+    ------
+    InputError
+        Bad parameters, wrong shapes, NaN/inf.
+
+    References
+    ----------
+    Chibunichev (2022), §1.11, eq. (1.11.6) (reconstructed; see the module notes).
+
+    Examples
+    --------
+    >>> similarity_forward(FiducialSimilarity(1.0, 2.0, 0.0, 2.0, 3.0), [2.0, 3.0])
+    array([2., 3.])
     """
     t = _as_similarity(params)
     pts = as_points(measured, 2, "measured points")
@@ -277,6 +471,34 @@ def similarity_inverse(params, image_xy, exact: bool = True):
     ``exact=False``: (1.11.10) as printed, x̄ = a0 + (a1·x − a2·y)/k_x, ȳ = b0 + (a2·x + a1·y)/k_y,
     which equals the exact inverse only when k_x = k_y; its error is
     (Δx̄, Δȳ) = a2·(1/k_y − 1/k_x)·(y, x).
+
+    Parameters
+    ----------
+    params : FiducialSimilarity or dict
+        a0, b0, phi, kx, ky.
+    image_xy : (2,) or (n, 2) array
+        Camera coordinates x, y.
+    exact : bool
+        The exact inverse (True) or (1.11.10) as printed (False).
+
+    Returns
+    -------
+    ndarray
+        (2,) or (n, 2) scanner coordinates x̄, ȳ.
+
+    Raises
+    ------
+    InputError
+        Bad parameters, wrong shapes, NaN/inf.
+
+    References
+    ----------
+    Chibunichev (2022), §1.11, eqs. (1.11.6), (1.11.10).
+
+    Examples
+    --------
+    >>> similarity_inverse(FiducialSimilarity(1.0, 2.0, 0.0, 2.0, 3.0), [2.0, 3.0])
+    array([2., 3.])
     """
     t = _as_similarity(params)
     pts = as_points(image_xy, 2, "image points")

@@ -26,11 +26,16 @@ from typing import Callable, Sequence
 import numpy as np
 
 from . import derivations
-from .camera import ExteriorOrientation, InteriorOrientation, as_point_pairs, as_points, correct_distortion
+from .camera import (ExteriorOrientation, InteriorOrientation, _expect, as_point_pairs, as_points,
+                     correct_distortion)
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
 from .lsq import Adjustment, AdjustmentView, IterationRecord, gauss_newton, point_weights
-from .rotation import check_order
+from .rotation import _numbers, check_order
 from .single_image import camera_coordinates, project
+
+__all__ = ["ResectionResult", "AngleResectionResult", "approximate_exterior_orientation", "space_resection",
+           "angle_equation_count", "independent_angle_equations", "resection_by_angles", "implied_noise",
+           "DEFAULT_TOL"]
 
 EO_NAMES = ExteriorOrientation.NAMES
 CENTER_NAMES = ("Xs", "Ys", "Zs")
@@ -40,15 +45,46 @@ DEFAULT_TOL = (1e-7, 1e-7, 1e-7, 1e-10, 1e-10, 1e-10)
 
 
 # --- results -----------------------------------------------------------------------------------
-@dataclass
+def _pm(value: float, sigma: float, digits: int, unit: str) -> str:
+    """``value unit ± sigma unit`` with plain floats (σ omitted when not available)."""
+    text = f"{value:.{digits}f}{unit}"
+    if np.isfinite(sigma):
+        text += f" ± {sigma:.{digits}f}{unit}" if abs(sigma) >= 10 ** -digits else f" ± {sigma:.2g}{unit}"
+    return text
+
+
+@dataclass(repr=False)
 class ResectionResult(AdjustmentView):
     """Result of :func:`space_resection` (§1.8).
 
-    ``eo`` is the adjusted exterior orientation, ``adjustment`` the full least-squares result
-    of :func:`photolib.lsq.gauss_newton` (order of the unknowns: X_S, Y_S, Z_S, ω, α, κ).
-    ``mu``, ``std`` (metres for X_S, Y_S, Z_S, radians for ω, α, κ), ``corr``, ``Q``,
-    ``iterations`` and ``history`` come from the adjustment; μ is in mm with unit weights
-    (unitless with P = 1/σ²).
+    Printing it gives a short summary: the centre in metres and the angles in degrees, each
+    with its m_j, μ and the number of iterations.
+
+    Attributes
+    ----------
+    eo : ExteriorOrientation
+        The adjusted exterior orientation.
+    adjustment : photolib.lsq.Adjustment
+        The full least-squares result (order of the unknowns: X_S, Y_S, Z_S, ω, α, κ).
+    jacobian : str
+        ``"derived"`` or ``"printed"`` partials.
+    mu, std, corr, Q, iterations, history
+        From the adjustment: μ (1.8.9) in mm with unit weights (unitless with P = 1/σ²),
+        m_j (1.8.8) in metres for X_S, Y_S, Z_S and radians for ω, α, κ, r_ij (1.8.10).
+
+    References
+    ----------
+    Chibunichev (2022), §1.8, eqs. (1.8.2)–(1.8.10).
+
+    Examples
+    --------
+    >>> io = InteriorOrientation(100.0)
+    >>> XYZ = [[1000, 1000, 10], [500, 1500, 15], [1500, 1500, 20], [500, 500, 15], [1500, 500, 20]]
+    >>> xy = project(XYZ, ExteriorOrientation.from_degrees(1000, 1000, 1000, 2, 5, 7), io)
+    >>> space_resection(XYZ, xy, io)
+    ResectionResult (§1.8, derived partials, ... iterations, μ = ...)
+      X_S = 1000.000 m ...
+      ω = 2.0000° ...
     """
 
     eo: ExteriorOrientation
@@ -65,13 +101,50 @@ class ResectionResult(AdjustmentView):
         """V of (1.8.4) as (n, 2): v_x, v_y per point (corrections to the measured coordinates)."""
         return self.adjustment.residuals.reshape(-1, 2)
 
+    def summary(self) -> str:
+        """A few lines: X_S, Y_S, Z_S in m and ω, α, κ in degrees with their m_j; μ; iterations."""
+        std = np.asarray(self.std, dtype=float)
+        v = self.eo.vector
+        lines = [f"ResectionResult (§1.8, {self.jacobian} partials, {self.iterations} iterations, "
+                 f"μ = {float(self.mu):.4g}, order {self.eo.order!r})"]
+        for k, name in enumerate(("X_S", "Y_S", "Z_S")):
+            lines.append(f"  {name} = {_pm(v[k], std[k], 3, ' m')}")
+        for k, name in enumerate(("ω", "α", "κ"), start=3):
+            lines.append(f"  {name} = {_pm(np.degrees(v[k]), np.degrees(std[k]), 4, '°')}")
+        return "\n".join(lines)
 
-@dataclass
+    __repr__ = summary
+
+
+@dataclass(repr=False)
 class AngleResectionResult(AdjustmentView):
     """Result of :func:`resection_by_angles` (§1.9): the projection centre and its accuracy.
 
     μ and m_j are *nominal*: of the n(n−1)/2 equations only 2n−3 are independent, but the
-    degrees of freedom are counted as m − 3, as the book does.
+    degrees of freedom are counted as m − 3, as the book does. Printing it gives a short summary.
+
+    Attributes
+    ----------
+    center : ndarray
+        X_S, Y_S, Z_S in metres.
+    adjustment : photolib.lsq.Adjustment
+        The least-squares result.
+    pairs : tuple
+        The pairs of points (i, j) that gave equations (1.9.1).
+    mu, std, corr, Q, iterations, history
+        From the adjustment (nominal, see above); m_j in metres.
+
+    References
+    ----------
+    Chibunichev (2022), §1.9, eqs. (1.9.1)–(1.9.2).
+
+    Examples
+    --------
+    >>> io = InteriorOrientation(100.0)
+    >>> XYZ = [[1000, 1000, 10], [500, 1500, 15], [1500, 1500, 20], [500, 500, 15], [1500, 500, 20]]
+    >>> xy = project(XYZ, ExteriorOrientation.from_degrees(1000, 1000, 1000, 2, 5, 7), io)
+    >>> resection_by_angles(XYZ, xy, io).center.round(3)
+    array([1000., 1000., 1000.])
     """
 
     center: np.ndarray
@@ -83,11 +156,38 @@ class AngleResectionResult(AdjustmentView):
         """v_i, one per pair of points (cosine units)."""
         return self.adjustment.residuals
 
+    def summary(self) -> str:
+        """A few lines: X_S, Y_S, Z_S in m with their (nominal) m_j, μ, pairs and iterations."""
+        std = np.asarray(self.std, dtype=float)
+        lines = [f"AngleResectionResult (§1.9, {len(self.pairs)} pairs, {self.iterations} iterations, "
+                 f"μ = {float(self.mu):.4g}, nominal)"]
+        for k, name in enumerate(("X_S", "Y_S", "Z_S")):
+            lines.append(f"  {name} = {_pm(float(self.center[k]), std[k], 3, ' m')}")
+        return "\n".join(lines)
+
+    __repr__ = summary
+
 
 # --- input checks ------------------------------------------------------------------------------
+def _tolerance(tol, n: int) -> np.ndarray:
+    tol = _numbers(tol, "tol")
+    try:
+        tol = np.broadcast_to(tol, (n,))
+    except ValueError:
+        raise InputError(f"tol: expected one threshold or {n}, got shape {tol.shape}") from None
+    if np.any(tol <= 0):
+        raise InputError("tol: the thresholds must be positive")
+    return tol
+
+
+def _iterations(max_iter) -> int:
+    if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
+        raise InputError(f"max_iter must be a positive integer, got {max_iter!r}")
+    return int(max_iter)
+
+
 def _control_points(XYZ, xy, io):
-    if not isinstance(io, InteriorOrientation):
-        raise InputError(f"io must be an InteriorOrientation, got {type(io).__name__}")
+    _expect(io, InteriorOrientation, "io")
     XYZ, xy = as_point_pairs(XYZ, 3, xy, 2, ("control points XYZ", "image points xy"), 3, "a resection")
     centred = XYZ - XYZ.mean(axis=0)
     sv = np.linalg.svd(centred, compute_uv=False)
@@ -105,15 +205,50 @@ def approximate_exterior_orientation(XYZ, xy, io: InteriorOrientation, order: st
     a plane similarity transform. Its least-squares fit over all points gives the image scale N
     (m per mm), κ (the direction of the image axes on the ground), and X_S, Y_S; the height is
     Z_S = mean(Z) + N·f. Fails for strongly tilted or oblique images — give ``eo0`` there.
+
+    Parameters
+    ----------
+    XYZ : (n, 3) array
+        Control points in metres, n ≥ 2, not all at one place in plan.
+    xy : (n, 2) array
+        Their image coordinates in mm, not all at one place.
+    io : InteriorOrientation
+    order : {"kaw", "wak"}
+        Sequence of the returned angles (ω = α = 0, so κ is the same in both).
+
+    Returns
+    -------
+    ExteriorOrientation
+
+    Raises
+    ------
+    InputError
+        Wrong shapes, different counts, fewer than 2 points, NaN/inf, ``io`` of the wrong type.
+    DegenerateGeometryError
+        All image points (or all control points in plan) coincide: no scale, no κ.
+
+    References
+    ----------
+    Chibunichev (2022), §1.8 (approximate values of the unknowns for (1.8.3)).
+
+    Examples
+    --------
+    >>> eo = approximate_exterior_orientation([[0, 0, 0], [100, 0, 0]], [[0, 0], [10, 0]], InteriorOrientation(100.0))
+    >>> eo.Zs
+    1000.0
     """
-    XYZ = as_points(XYZ, 3, "control point coordinates XYZ")
-    xy = as_points(xy, 2, "image coordinates xy")
+    _expect(io, InteriorOrientation, "io")
+    check_order(order)
+    XYZ, xy = as_point_pairs(XYZ, 3, xy, 2, ("control point coordinates XYZ", "image coordinates xy"), 2,
+                             "an approximate exterior orientation")
     z = (xy[:, 0] - io.x0) + 1j * (xy[:, 1] - io.y0)
     w = XYZ[:, 0] + 1j * XYZ[:, 1]
     dz, dw = z - z.mean(), w - w.mean()
     denom = np.sum(np.abs(dz) ** 2)
-    if denom == 0:
-        raise DegenerateGeometryError("all image points coincide: no approximation possible")
+    if denom <= (1e-9 * max(1.0, float(np.max(np.abs(z))))) ** 2 * len(z):
+        raise DegenerateGeometryError("all image points coincide: no approximate orientation possible")
+    if np.sum(np.abs(dw) ** 2) <= (1e-9 * max(1.0, float(np.max(np.abs(w))))) ** 2 * len(w):
+        raise DegenerateGeometryError("all control points coincide in plan: no approximate orientation possible")
     m = np.sum(np.conj(dz) * dw) / denom                        # N·e^{iκ}
     c = w.mean() - m * z.mean()
     scale = abs(m)
@@ -122,8 +257,8 @@ def approximate_exterior_orientation(XYZ, xy, io: InteriorOrientation, order: st
 
 
 # --- §1.8 ---------------------------------------------------------------------------------------
-def collinearity_linearizer(XYZ, xy, io: InteriorOrientation, order: str = "kaw", jacobian: str = "derived"):
-    """``linearize(p) -> (B, L)`` of (1.8.5) for the EO vector p = (X_S, Y_S, Z_S, ω, α, κ).
+def _collinearity_linearizer(XYZ, xy, io: InteriorOrientation, order: str = "kaw", jacobian: str = "derived"):
+    """Internal: ``linearize(p) -> (B, L)`` of (1.8.5) for the EO vector p = (X_S, Y_S, Z_S, ω, α, κ).
 
     Rows alternate x, y per point; L = F_x, F_y of (1.8.2) (computed − measured); B holds
     a₁…a₆ / b₁…b₆ of (1.8.3), derived by sympy (``"derived"``) or as printed (``"printed"``).
@@ -188,6 +323,18 @@ def space_resection(XYZ, xy, io: InteriorOrientation, eo0=None, order: str = "ka
         Collinear control points or a singular normal matrix.
     ConvergenceError
         The iteration diverged or did not settle in ``max_iter`` steps.
+
+    References
+    ----------
+    Chibunichev (2022), §1.8, eqs. (1.8.2)–(1.8.10).
+
+    Examples
+    --------
+    >>> io = InteriorOrientation(100.0)
+    >>> XYZ = [[1000, 1000, 10], [500, 1500, 15], [1500, 1500, 20], [500, 500, 15], [1500, 500, 20]]
+    >>> xy = project(XYZ, ExteriorOrientation.from_degrees(1000, 1000, 1000, 2, 5, 7), io)
+    >>> space_resection(XYZ, xy, io).eo.angles_degrees.round(6)
+    array([2., 5., 7.])
     """
     check_order(order)
     if jacobian not in ("derived", "printed"):
@@ -202,8 +349,9 @@ def space_resection(XYZ, xy, io: InteriorOrientation, eo0=None, order: str = "ka
         x0 = (eo0 if eo0.order == order else eo0.with_order(order)).vector
     else:
         x0 = ExteriorOrientation.from_vector(eo0, order).vector
-    tol = np.asarray(DEFAULT_TOL if tol is None else tol, dtype=float)
-    linearize = collinearity_linearizer(XYZ, xy, io, order, jacobian)
+    tol = _tolerance(DEFAULT_TOL if tol is None else tol, 6)
+    max_iter = _iterations(max_iter)
+    linearize = _collinearity_linearizer(XYZ, xy, io, order, jacobian)
     history = []
 
     def record(rec):
@@ -241,10 +389,42 @@ def space_resection(XYZ, xy, io: InteriorOrientation, eo0=None, order: str = "ka
 
 
 # --- §1.9 ---------------------------------------------------------------------------------------
+def _count(n_points, least: int) -> int:
+    if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)):
+        raise InputError(f"the number of points must be an integer, got {n_points!r}")
+    if n_points < least:
+        raise InputError(f"the number of points must be at least {least}, got {n_points}")
+    return int(n_points)
+
+
 def angle_equation_count(n_points: int) -> int:
-    """Number of equations (1.9.1) that n points give: one per pair, n(n−1)/2 (§1.9)."""
-    if n_points < 0:
-        raise InputError("the number of points cannot be negative")
+    """Number of equations (1.9.1) that n points give: one per pair, n(n−1)/2 (§1.9).
+
+    Parameters
+    ----------
+    n_points : int
+        Number of control points, ≥ 0.
+
+    Returns
+    -------
+    int
+        n(n−1)/2.
+
+    Raises
+    ------
+    InputError
+        A negative number or not an integer.
+
+    References
+    ----------
+    Chibunichev (2022), §1.9, eq. (1.9.1).
+
+    Examples
+    --------
+    >>> angle_equation_count(5)
+    10
+    """
+    n_points = _count(n_points, 0)
     return n_points * (n_points - 1) // 2
 
 
@@ -253,9 +433,32 @@ def independent_angle_equations(n_points: int) -> int:
 
     n rays from S are n unit vectors (2n numbers); the angles between them do not change when
     the whole bundle is rotated (3 numbers), so they carry at most 2n − 3 independent values.
+
+    Parameters
+    ----------
+    n_points : int
+        Number of control points, ≥ 2.
+
+    Returns
+    -------
+    int
+        2n − 3.
+
+    Raises
+    ------
+    InputError
+        Fewer than 2 points or not an integer.
+
+    References
+    ----------
+    Chibunichev (2022), §1.9.
+
+    Examples
+    --------
+    >>> independent_angle_equations(5)
+    7
     """
-    if n_points < 2:
-        raise InputError("angles need at least 2 points")
+    n_points = _count(n_points, 2)
     return 2 * n_points - 3
 
 
@@ -295,25 +498,58 @@ def resection_by_angles(XYZ, xy, io: InteriorOrientation, center0=None, pairs="a
         One weight per pair.
     tol : float
         |δ| threshold in metres.
+    max_iter : int
+    progress : callable, optional
+        Called with every :class:`~photolib.lsq.IterationRecord`.
+
+    Returns
+    -------
+    AngleResectionResult
+        ``center``, nominal μ and m_j, residuals per pair, iteration history.
+
+    Raises
+    ------
+    InputError
+        Fewer than 3 points or pairs, bad pairs, wrong shapes, NaN/inf, weights ≤ 0.
+    DegenerateGeometryError
+        Collinear control points or a singular normal matrix.
+    ConvergenceError
+        The iteration did not settle in ``max_iter`` steps.
 
     Notes
     -----
     Only 2n − 3 of the n(n−1)/2 equations are independent (:func:`independent_angle_equations`).
     The degrees of freedom are nevertheless counted as m − 3, as the book does, so μ and the
     m_j are nominal: they are not the statistically rigorous precisions.
+
+    References
+    ----------
+    Chibunichev (2022), §1.9, eqs. (1.9.1)–(1.9.2).
+
+    Examples
+    --------
+    >>> io = InteriorOrientation(100.0)
+    >>> XYZ = [[1000, 1000, 10], [500, 1500, 15], [1500, 1500, 20], [500, 500, 15], [1500, 500, 20]]
+    >>> xy = project(XYZ, ExteriorOrientation.from_degrees(1000, 1000, 1000, 2, 5, 7), io)
+    >>> resection_by_angles(XYZ, xy, io).center.round(3)
+    array([1000., 1000., 1000.])
     """
     XYZ, xy = _control_points(XYZ, xy, io)
     pair_list = _pairs(pairs, len(XYZ))
     if center0 is None:
         center0 = approximate_exterior_orientation(XYZ, xy, io).center
-    center0 = np.asarray(center0, dtype=float)
+    center0 = _numbers(center0, "center0")
     if center0.shape != (3,):
         raise InputError(f"center0 must be (X_S, Y_S, Z_S), got shape {center0.shape}")
+    tol = _tolerance(tol, 3)
+    max_iter = _iterations(max_iter)
     P = None
     if weights is not None:
-        P = np.asarray(weights, dtype=float)
+        P = _numbers(weights, "weights")
         if P.shape != (len(pair_list),):
             raise InputError(f"weights: one per pair expected ({len(pair_list)}), got {P.shape}")
+        if np.any(P <= 0):
+            raise InputError("weights must be positive")
     i, j = np.array(pair_list).T
     residual_fn, jacobian_fn = derivations.angle_equality_model().compile()
     data = (XYZ[i, 0], XYZ[i, 1], XYZ[i, 2], XYZ[j, 0], XYZ[j, 1], XYZ[j, 2],
@@ -336,11 +572,42 @@ def implied_noise(XYZ, xy, io: InteriorOrientation, eo: ExteriorOrientation):
 
     With the §1.8 example's true EO this recovers the random errors the book added (σ = 0.016 mm,
     rounded to 0.001 mm in print), so the example can be regenerated with other noise.
-    Returns ``(exact, noise)``, both (n, 2) in mm.
+
+    Parameters
+    ----------
+    XYZ : (n, 3) array
+        Control points in metres.
+    xy : (n, 2) array
+        Their measured image coordinates in mm.
+    io : InteriorOrientation
+    eo : ExteriorOrientation
+        The true pose.
+
+    Returns
+    -------
+    (exact, noise)
+        Both (n, 2) in mm.
+
+    Raises
+    ------
+    InputError
+        Wrong shapes, different counts, NaN/inf, ``io``/``eo`` of the wrong type.
+    PointBehindCameraError
+        A control point behind the camera of ``eo``.
+
+    References
+    ----------
+    Chibunichev (2022), §1.8 (the example's data), eq. (1.4.12).
+
+    Examples
+    --------
+    >>> io, eo = InteriorOrientation(100.0), ExteriorOrientation(0.0, 0.0, 1000.0)
+    >>> exact, noise = implied_noise([[100.0, 50.0, 0.0]], [[10.001, 5.0]], io, eo)
+    >>> noise.round(6)
+    array([[0.001, 0.   ]])
     """
-    XYZ = as_points(XYZ, 3, "control point coordinates XYZ")
-    xy = as_points(xy, 2, "image coordinates xy")
-    if len(XYZ) != len(xy):
-        raise InputError(f"{len(XYZ)} control points but {len(xy)} image points: shapes must match")
+    _expect(io, InteriorOrientation, "io")
+    _expect(eo, ExteriorOrientation, "eo")
+    XYZ, xy = as_point_pairs(XYZ, 3, xy, 2, ("control points XYZ", "image points xy"), 1, "implied_noise")
     exact = project(XYZ, eo, io)
     return exact, xy - exact

@@ -25,13 +25,9 @@ xh, yh = sp.symbols("x^0 y^0", real=True)
 
 def _quaternion_A():
     """(1.3.7) divided by m = a² + b² + c² + d²: an orthogonal matrix for any non-zero (a, b, c, d)."""
+    from ..derivations import quaternion_rotation_symbolic
     a, b, c, d = _qa, _qb, _qc, _qd
-    Q = sp.Matrix([
-        [d**2 + a**2 - b**2 - c**2, 2 * (a * b - c * d), 2 * (a * c + b * d)],
-        [2 * (a * b + c * d), d**2 - a**2 + b**2 - c**2, 2 * (b * c - a * d)],
-        [2 * (a * c - b * d), 2 * (b * c + a * d), d**2 - a**2 - b**2 + c**2],
-    ])
-    return Q, a**2 + b**2 + c**2 + d**2
+    return quaternion_rotation_symbolic(a, b, c, d), a**2 + b**2 + c**2 + d**2
 
 
 def _is_zero(expr) -> bool:

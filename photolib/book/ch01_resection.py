@@ -20,7 +20,7 @@ from .. import derivations
 from ..camera import ExteriorOrientation, InteriorOrientation
 from ..errors import ConvergenceError
 from ..lsq import Adjustment, gauss_newton
-from ..resection import (DEFAULT_TOL, EO_NAMES, angle_equation_count, collinearity_linearizer,
+from ..resection import (DEFAULT_TOL, EO_NAMES, angle_equation_count, _collinearity_linearizer,
                          independent_angle_equations, resection_by_angles, space_resection)
 
 CORRELATION_NAMES = tuple((i, j, f"r_{EO_NAMES[i]}_{EO_NAMES[j]}") for i in range(6) for j in range(i + 1, 6))
@@ -80,7 +80,7 @@ def as_printed_resection(inputs: dict) -> AsPrinted:
         literal = err
     else:  # pragma: no cover — would mean the printed partials work, contradicting the erratum
         raise AssertionError("the printed partials converged: the §1.8 erratum no longer holds")
-    linearize = collinearity_linearizer(XYZ, xy, io, "kaw", "printed")
+    linearize = _collinearity_linearizer(XYZ, xy, io, "kaw", "printed")
 
     def flipped(p):
         B, L = linearize(p)

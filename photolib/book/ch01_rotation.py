@@ -31,7 +31,50 @@ def product(order: str) -> sp.Matrix:
 
 
 def _is_zero(expr) -> bool:
-    return sp.simplify(sp.expand_trig(sp.expand(expr))) == 0
+    """Exact zero test of a trigonometric expression.
+
+    Fast path (exact): every sin/cos of a rational multiple of an angle θ is written as a
+    polynomial in s = sin(θ/D), c = cos(θ/D) (D the common denominator), the expression brought
+    to one fraction, and its numerator reduced modulo s² + c² − 1 for each angle — a canonical
+    form (degree ≤ 1 in every s), so the numerator is an identity on the circles iff it reduces
+    to 0. Anything else (other functions, non-rational angle multiples) goes to sympy's simplify.
+    """
+    original = expr
+    expr = sp.sympify(expr).replace(sp.tan, lambda u: sp.sin(u) / sp.cos(u))
+    expr = sp.expand_trig(expr)
+    if any(not p.exp.is_Integer for p in expr.atoms(sp.Pow)):
+        return sp.simplify(sp.expand_trig(sp.expand(original))) == 0
+    trig = expr.atoms(sp.sin, sp.cos)
+    if expr.atoms(sp.Function) - trig:
+        return sp.simplify(sp.expand_trig(sp.expand(original))) == 0
+    per_angle = {}
+    for t in trig:
+        coeff, rest = t.args[0].as_coeff_Mul()
+        if not (coeff.is_Rational and rest.is_Symbol):
+            return sp.simplify(sp.expand_trig(sp.expand(original))) == 0
+        per_angle.setdefault(rest, set()).add(coeff)
+    subs, circles = {}, []
+    for theta, coeffs in per_angle.items():
+        den = sp.ilcm(1, 1, *[q.q for q in coeffs])
+        h = sp.Dummy("h", real=True)
+        s_, c_ = sp.Dummy("s", real=True), sp.Dummy("c", real=True)
+        for q in coeffs:
+            n = int(q * den)
+            for fn in (sp.sin, sp.cos):
+                poly = sp.expand_trig(fn(n * h))
+                subs[fn(q * theta)] = poly.subs({sp.sin(h): s_, sp.cos(h): c_})
+        circles.append((s_, c_))
+    numerator = sp.numer(sp.together(expr.xreplace(subs)))
+    gens = [g for pair in circles for g in pair]
+    poly = sp.Poly(sp.expand(numerator), *gens) if gens else sp.Poly(sp.expand(numerator), sp.Dummy())
+    reduced = sp.Integer(0)
+    for monom, coeff in poly.terms():
+        term = coeff
+        for i, (s_, c_) in enumerate(circles):
+            e_s, e_c = monom[2 * i], monom[2 * i + 1]
+            term *= s_ ** (e_s % 2) * (1 - c_ ** 2) ** (e_s // 2) * c_ ** e_c
+        reduced += term
+    return sp.expand(reduced) == 0
 
 
 def element_list(inputs: dict) -> dict:
@@ -77,10 +120,10 @@ def orthogonality(inputs: dict) -> dict:
 
 def quaternion_rotation(a_=a, b_=b, c_=c, d_=d) -> sp.Matrix:
     """The Euler–Rodrigues matrix (d² − v·v)E + 2vvᵀ + 2d[v]× of q = (v, d), v = (a, b, c):
-    |q|² times the counter-clockwise rotation by 2·atan2(|v|, d) about v."""
-    v = sp.Matrix([a_, b_, c_])
-    cross = sp.Matrix([[0, -c_, b_], [c_, 0, -a_], [-b_, a_, 0]])
-    return (d_ ** 2 - (v.T * v)[0]) * sp.eye(3) + 2 * v * v.T + 2 * d_ * cross
+    |q|² times the counter-clockwise rotation by 2·atan2(|v|, d) about v (the library's model,
+    :func:`photolib.derivations.quaternion_rotation_symbolic`)."""
+    from ..derivations import quaternion_rotation_symbolic
+    return quaternion_rotation_symbolic(a_, b_, c_, d_)
 
 
 def quaternion_matrix(inputs: dict) -> dict:

@@ -129,3 +129,57 @@ def test_exterior_orientation_round_trips():
 def test_bad_input_raises_input_error(call):
     with pytest.raises(InputError):
         call()
+
+
+# --- the vectorised collection of exterior orientations ------------------------------------------
+def test_exterior_orientations_round_trip_and_matrices():
+    from photolib.camera import ExteriorOrientations
+    from photolib.rotation import rotation_matrix
+    rng = np.random.default_rng(3)
+    centres = rng.uniform(-500, 500, (7, 3))
+    angles = rng.uniform(-1.0, 1.0, (7, 3))
+    eos = ExteriorOrientations(centres, angles, "wak")
+    assert len(eos) == 7 and eos.order == "wak"
+    one = eos[4]
+    assert isinstance(one, ExteriorOrientation) and one.order == "wak"
+    np.testing.assert_array_equal(one.vector, np.r_[centres[4], angles[4]])
+    # each matrix is the one of the single orientation (independently: scipy's extrinsic xyz = ω–α–κ)
+    from scipy.spatial.transform import Rotation
+    np.testing.assert_allclose(eos.matrices(), Rotation.from_euler("XYZ", angles).as_matrix(), atol=1e-14)
+    np.testing.assert_allclose(eos.matrices()[2], rotation_matrix(*angles[2], "wak"), atol=1e-15)
+    back = ExteriorOrientations.from_list(eos.to_list())
+    assert back == eos
+    kaw = eos.with_order("kaw")
+    np.testing.assert_allclose(kaw.matrices(), eos.matrices(), atol=1e-13)
+    assert len(eos[1:3]) == 2 and eos[[0, 6]][1] == eos[6]
+    assert repr(eos).startswith("ExteriorOrientations(7 images, order='wak'")
+
+
+def test_exterior_orientations_bad_input():
+    from photolib.camera import ExteriorOrientations
+    with pytest.raises(InputError):
+        ExteriorOrientations(np.zeros((2, 3)), np.zeros((3, 3)))
+    with pytest.raises(InputError):
+        ExteriorOrientations(np.full((2, 3), np.nan), np.zeros((2, 3)))
+    with pytest.raises(InputError):
+        ExteriorOrientations.from_list([ExteriorOrientation(0, 0, 0), "not an orientation"])
+    with pytest.raises(InputError):
+        ExteriorOrientations(np.zeros((2, 3)), np.zeros((2, 3)))[5]
+
+
+def test_degrees_warn_and_non_rotations_are_refused():
+    from photolib.errors import DegreesWarning
+    with pytest.warns(DegreesWarning):
+        ExteriorOrientation(0.0, 0.0, 1000.0, 2.0, 5.0, 30.0)        # degrees passed as radians
+    with pytest.raises(InputError, match="not a rotation"):
+        ExteriorOrientation.from_matrix([0, 0, 0], 2 * np.eye(3))
+    with pytest.raises(InputError):
+        ExteriorOrientation(0.0, "1", 2.0)
+
+
+def test_orientation_reprs_are_short_and_in_degrees():
+    eo = ExteriorOrientation.from_degrees(1000, 2000, 1500, 2, 5, 7)
+    text = repr(eo)
+    assert "omega=2.0000°" in text and "kappa=7.0000°" in text and "Zs=1500.000 m" in text
+    assert len(text) < 150
+    assert repr(InteriorOrientation(100.0)) == "InteriorOrientation(f=100.000 mm, x0=0.000 mm, y0=0.000 mm)"

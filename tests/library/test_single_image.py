@@ -229,10 +229,3 @@ def test_points_behind_the_camera_raise():
     A = rotation_matrix(0.0, np.radians(80.0), 0.0)
     with pytest.raises(DegenerateGeometryError):
         tilted_to_horizontal([[-90.0, 0.0]], A, 100.0, 100.0)     # above the true horizon
-
-
-def test_scale_formula_check_accepts_only_f_over_H():
-    """The formula check behind the §1.5 scale erratum: the printed 1/H fails, f/H passes."""
-    from photolib.book.ch01_geometry import horizontal_image_scale as check
-    assert check({"printed": "f/H", "f_mm": 153.0, "H_m": 1800.0})["printed_equals_derived"]
-    assert not check({"printed": "1/H", "f_mm": 153.0, "H_m": 1800.0})["printed_equals_derived"]

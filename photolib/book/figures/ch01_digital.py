@@ -7,6 +7,7 @@ import numpy as np
 from matplotlib.patches import Rectangle
 
 from ... import digital, scanners
+from .. import ch01_scanners
 
 
 def pixel_systems(n_rows: int = 6, n_cols: int = 7, pixel=(4, 3)):
@@ -155,7 +156,7 @@ def fiducial_systems(measured, params, Lx, Ly, exaggerate=20.0):
 
 def scan_layouts(frame_mm=(230.0, 230.0)):
     """Figs. 1.27/1.28 redrawn for Table 1.1: swaths (line sensors) or tiles (area sensor)."""
-    table = scanners.table_1_1()
+    table = ch01_scanners.table_1_1()
     fig, axes = plt.subplots(1, len(table), figsize=(3.3 * len(table), 3.8))
     for ax, s in zip(axes, table):
         for k, (x, y, w, h) in enumerate(scanners.scan_layout(s, frame_mm)):
