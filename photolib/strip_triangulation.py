@@ -53,12 +53,58 @@ from .image_pair import (
 )
 from .lsq import Adjustment, gauss_newton, solve_normal_equations
 from .rotation import DEFAULT_ORDER, check_order, rot_z
-from .synthetic import terrain_height
+from .synthetic import ORIENTATION, TIE, Block, Observations, strip_layout, terrain_height
+
+
+__all__ = ["centre_id", "UnitModel", "pair_model", "join_model", "ContinuationStrip", "continuation_strip",
+           "orient_strip", "POLYNOMIAL_TERMS", "strip_axis_angle", "StripPolynomial", "fit_strip_polynomial",
+           "EquationRow", "tie_pairs", "grid_adjacency", "unit_equations", "initial_transforms", "UnitsAdjustment",
+           "adjust_independent_units", "image_orientations", "count_independent_strips",
+           "count_independent_models", "structure_counts", "layout_block", "layout_models"]
+
+
+def _float(value, what: str) -> float:
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be a number, got {value!r}") from None
+
+
+def _int(value, what: str) -> int:
+    if isinstance(value, bool) or not (isinstance(value, (int, np.integer))
+                                       or (isinstance(value, (float, np.floating)) and float(value).is_integer())):
+        raise InputError(f"{what} must be an integer, got {value!r}")
+    return int(value)
 
 
 def centre_id(image: int) -> str:
-    """Identifier of the projection centre of image ``image`` in model point lists: ``"S<k>"``."""
-    return f"S{int(image)}"
+    """Identifier of the projection centre of image ``image`` in model point lists: ``"S<k>"``.
+
+    Parameters
+    ----------
+    image : int
+        Image number.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InputError
+        ``image`` is not a non-negative integer.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2 (the projection centre S as a tie point of adjacent models), §3.4 (3.4.3).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import centre_id
+    >>> centre_id(3)
+    'S3'
+    """
+    return f"S{_int(image, 'image')}"
 
 
 # --- models ---------------------------------------------------------------------------------------------
@@ -66,9 +112,33 @@ def centre_id(image: int) -> str:
 class UnitModel:
     """A model or a strip model: identified points in the unit's own frame.
 
-    ``ids`` may be any hashable labels; projection centres are labelled :func:`centre_id`.
-    ``images`` are the images whose centres the unit carries; ``stereo`` the Chapter 2 model it
-    came from (needed only for the image orientations (3.4.5)).
+    Parameters
+    ----------
+    name : str
+        Name.
+    ids : sequence
+        Hashable point labels; projection centres are labelled :func:`centre_id`.
+    points : (n, 3) array
+        Coordinates in the unit's frame.
+    images : tuple of int
+        The images whose centres the unit carries.
+    stereo : StereoModel, optional
+        The Chapter 2 model it came from (needed only for the image orientations (3.4.5)).
+
+    Raises
+    ------
+    InputError
+        Ids and points of different count, duplicate ids, NaN/inf, wrong shapes.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2 (models, strip models), §3.4 (independent models).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import UnitModel
+    >>> UnitModel("M1", [1, 2, "S0"], [[0, 0, 0], [1, 0, 0], [0, 0, 1]])
+    UnitModel('M1': 3 points, images ())
     """
 
     name: str
@@ -85,6 +155,9 @@ class UnitModel:
         if len(set(self.ids)) != len(self.ids):
             raise InputError(f"unit {self.name}: point ids are not unique")
         self._index = {p: i for i, p in enumerate(self.ids)}
+
+    def __repr__(self) -> str:
+        return f"UnitModel({self.name!r}: {len(self.ids)} points, images {self.images})"
 
     def __contains__(self, point_id) -> bool:
         return point_id in self._index
@@ -109,6 +182,47 @@ def pair_model(ids, xy1, xy2, io: InteriorOrientation, images=(0, 1), *, order: 
     b_y = b_z = ω'₁ = 0, (2.7.4)), then intersection (§2.9): the model frame has its origin at
     the left projection centre and X_M along the base. The two projection centres are added to
     the model's points as :func:`centre_id` of ``images``.
+
+    Parameters
+    ----------
+    ids : sequence
+        Point identifiers, one per measured point.
+    xy1, xy2 : (n, 2) arrays
+        Image coordinates on the left and right image, mm.
+    io : InteriorOrientation
+        The camera.
+    images : (int, int)
+        Numbers of the two images.
+    order : {"kaw", "wak"}
+        Rotation order.
+    base_length : float
+        Length of the model base (model units).
+    name : str, optional
+        Model name (default "M<k1>-<k2>").
+
+    Returns
+    -------
+    UnitModel
+
+    Raises
+    ------
+    InputError
+        Ids and points of different count, NaN/inf, too few points for relative orientation.
+    DegenerateGeometryError, ConvergenceError
+        From the relative orientation.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2; §2.7, eq. (2.7.4); §2.9.
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, pair_model
+    >>> blk = layout_block(1, 2, seed=0)
+    >>> (i1, xy1), (i2, xy2) = blk.measurements(0), blk.measurements(1)
+    >>> m = pair_model(list(i1), xy1, xy2, blk.io, (0, 1))
+    >>> m.name, len(m.ids), m.ids[-2:]                # 7 common points + the two centres
+    ('M0-1', 9, ('S0', 'S1'))
     """
     ids = list(ids)
     if len(ids) != len(np.asarray(xy1)):
@@ -126,9 +240,40 @@ def join_model(reference: UnitModel, model: UnitModel, *, order: str = DEFAULT_O
     """Seven elements of a model in the frame of ``reference`` from their common points (3.2.1).
 
     X_M0i + A_Mi·X_Mi·t_i − X_M = 0 for each tie point, solved by least squares
-    (:func:`photolib.image_pair.absolute_orientation`, partials from sympy). At least 3 common
-    points are needed and, as the book requires, the projection centre of the image shared by
-    the two models must be one of them (``require_centre``).
+    (:func:`photolib.image_pair.absolute_orientation`, partials from sympy).
+
+    Parameters
+    ----------
+    reference, model : UnitModel
+        The model already in the strip frame, and the model to join.
+    order : {"kaw", "wak"}
+        Rotation order of the elements.
+    require_centre : bool
+        Require the projection centre of the shared image among the common points (as the book does).
+
+    Returns
+    -------
+    SimilarityTransform
+
+    Raises
+    ------
+    InputError
+        Fewer than 3 common points, or the shared centre missing with ``require_centre``.
+    DegenerateGeometryError
+        Collinear common points.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2, eq. (3.2.1); §2.10, eq. (2.10.4).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)                      # two pair models
+    >>> from photolib.strip_triangulation import join_model
+    >>> round(join_model(models[0], models[1]).t, 6)      # both models have the same base length
+    1.0
     """
     common = reference.common(model)
     if len(common) < 3:
@@ -142,12 +287,42 @@ def join_model(reference: UnitModel, model: UnitModel, *, order: str = DEFAULT_O
 
 @dataclass
 class ContinuationStrip:
-    """Result of the continuation method (§3.2): the strip model and its quality check."""
+    """Result of the continuation method (§3.2): the strip model and its quality check.
+
+    Attributes
+    ----------
+    model : UnitModel
+        Final strip model (means of the determinations) in the model-1 frame.
+    transforms : list of SimilarityTransform
+        Model i into the strip frame (identity for model 1).
+    differences : dict id -> (3,) array
+        ΔX, ΔY, ΔZ: later − earlier determination, per double point.
+    determinations : dict id -> int
+        Number of models that determine the point.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2, eqs. (3.2.1), (3.2.2).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)
+    >>> from photolib.strip_triangulation import continuation_strip
+    >>> continuation_strip(models)                     # doctest: +ELLIPSIS
+    ContinuationStrip(2 models, 15 points, 3 double points, r.m.s. ΔX, ΔY, ΔZ = ... m)
+    """
 
     model: UnitModel                 # final strip model (means of the determinations) in the model-1 frame
     transforms: list                 # SimilarityTransform of model i into the strip frame (identity for model 1)
     differences: dict                # id -> (ΔX, ΔY, ΔZ): later − earlier determination, per double point
     determinations: dict             # id -> number of models that determine the point
+
+    def __repr__(self) -> str:
+        rms = ", ".join(f"{v:.3g}" for v in self.rms_difference)
+        return (f"ContinuationStrip({len(self.transforms)} models, {len(self.model.ids)} points, "
+                f"{len(self.differences)} double points, r.m.s. ΔX, ΔY, ΔZ = {rms} m)")
 
     def blunders(self, tolerance: float) -> list:
         """Ids whose double determinations differ by more than ``tolerance`` in any coordinate."""
@@ -168,6 +343,40 @@ def continuation_strip(models, *, order: str = DEFAULT_ORDER, require_centre: bo
     points (tie points of the triple overlap and the shared centre S), then all its points are
     transferred by (3.2.2). Points determined twice give the differences ΔX, ΔY, ΔZ (an accuracy
     criterion that exposes blunders); their final coordinates are the means.
+
+    Parameters
+    ----------
+    models : sequence of UnitModel
+        Pair models in flight order (at least two).
+    order : {"kaw", "wak"}
+        Rotation order.
+    require_centre : bool
+        See :func:`join_model`.
+    name : str
+        Name of the strip model.
+
+    Returns
+    -------
+    ContinuationStrip
+
+    Raises
+    ------
+    InputError
+        Fewer than two models, too few common points.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2, eqs. (3.2.1), (3.2.2).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)                      # two pair models
+    >>> from photolib.strip_triangulation import continuation_strip
+    >>> cs = continuation_strip(models)
+    >>> len(cs.model.ids), len(cs.differences), bool((cs.rms_difference < 1e-6).all())
+    (15, 3, True)
     """
     models = list(models)
     if len(models) < 2:
@@ -202,7 +411,12 @@ def _known_points(control) -> tuple:
     if control is None:
         return (), np.zeros((0, 3)), np.zeros((0, 3), bool)
     ids = tuple(control)
-    XYZ = np.array([np.asarray(control[p], dtype=float).reshape(3) for p in ids]) if ids else np.zeros((0, 3))
+    try:
+        XYZ = np.array([np.asarray(control[p], dtype=float).reshape(3) for p in ids]) if ids else np.zeros((0, 3))
+    except (TypeError, ValueError):
+        raise InputError("control/GNSS points: give three numbers (X, Y, Z; NaN for unknown) per id") from None
+    if np.any(np.isinf(XYZ)):
+        raise InputError("control/GNSS points contain inf")
     mask = np.isfinite(XYZ)
     bad = [p for p, m in zip(ids, mask) if m[0] != m[1] or not m.any()]
     if bad:
@@ -213,9 +427,42 @@ def _known_points(control) -> tuple:
 def orient_strip(strip: UnitModel, control: dict, *, order: str = DEFAULT_ORDER):
     """External orientation of a strip model by control points (3.2.3), as for one model (§2.11).
 
-    ``control`` maps point ids to object coordinates (NaN for an unknown component: planimetric
-    or height points). Returns ``(transform, object_points)`` with ``object_points`` an (n, 3)
-    array of all strip points in ``strip.ids`` order.
+    Parameters
+    ----------
+    strip : UnitModel
+        The strip model.
+    control : dict id -> (X, Y, Z)
+        Object coordinates; NaN for an unknown component (planimetric or height points).
+    order : {"kaw", "wak"}
+        Rotation order.
+
+    Returns
+    -------
+    (SimilarityTransform, (n, 3) array)
+        The seven elements and all strip points in the object frame, in ``strip.ids`` order.
+
+    Raises
+    ------
+    InputError
+        Control points not in the strip, fewer than 7 control equations, malformed control.
+    DegenerateGeometryError
+        Control on one line.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2, eq. (3.2.3); §2.11.
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)                      # two pair models
+    >>> ctl = {p: blk.truth([p])[0] for p in (1, 3, 10, 12, 2)}
+    >>> from photolib.strip_triangulation import continuation_strip, orient_strip
+    >>> cs = continuation_strip(models)
+    >>> T, XYZ = orient_strip(cs.model, ctl)
+    >>> bool(abs(XYZ - blk.truth(cs.model.ids)).max() < 1e-6)
+    True
     """
     ids, XYZ, mask = _known_points(control)
     ids_in = [p for p in ids if p in strip]
@@ -237,7 +484,35 @@ def strip_axis_angle(transform: SimilarityTransform) -> float:
     """κ_M of fig. 3.6: the direction of the strip model's X_M axis in the object XY plane.
 
     The horizontal projection of the first column of A_M; equal to κ_M when ω_M = α_M = 0.
+
+    Parameters
+    ----------
+    transform : SimilarityTransform
+        The external orientation of the strip model (3.2.3).
+
+    Returns
+    -------
+    float
+        κ_M, rad.
+
+    Raises
+    ------
+    InputError
+        ``transform`` is not a SimilarityTransform.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2, fig. 3.6, eqs. (3.2.6), (3.2.7).
+
+    Examples
+    --------
+    >>> from photolib.image_pair import SimilarityTransform
+    >>> from photolib.strip_triangulation import strip_axis_angle
+    >>> round(strip_axis_angle(SimilarityTransform(0, 0, 0, 0.0, 0.0, 0.3, 1.0, "wak")), 6)
+    0.3
     """
+    if not isinstance(transform, SimilarityTransform):
+        raise InputError(f"expected a SimilarityTransform, got {type(transform).__name__}")
     a = transform.matrix[:, 0]
     return float(np.arctan2(a[1], a[0]))
 
@@ -255,6 +530,31 @@ class StripPolynomial:
     ``coefficients[c]`` = (A₀…A₄), (B₀…B₄), (C₀…C₄) for c = X, Y, Z, of the *centred* starred
     coordinates (X* − X*_c, Y* − Y*_c), ``centre`` = (X*_c, Y*_c). Centring only re-parametrises
     (3.2.4): the corrected coordinates are the same as with the book's uncentred X, Y.
+
+    Attributes
+    ----------
+    coefficients : (3, 5) array
+        Rows X, Y, Z; columns the terms :data:`POLYNOMIAL_TERMS`.
+    kappa : float
+        κ_M, rad.
+    centre : (2,) array
+        X*_c, Y*_c, m.
+    residuals : (n, 3) array
+        Corrected − geodetic at the control points, m.
+    dof : int
+        Redundancy 3n − 15.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2, eqs. (3.2.4)–(3.2.7).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.strip_triangulation import fit_strip_polynomial
+    >>> geo = np.array([[0, 100, 5], [0, -100, 8], [1000, 0, 6], [2000, 100, 4], [2000, -100, 7.0]])
+    >>> fit_strip_polynomial(geo + [0.0, 0.0, 0.5], geo)      # doctest: +ELLIPSIS
+    StripPolynomial(κ_M = 0.000°, 5 control points, dof 0, r.m.s. residual ... m)
     """
 
     coefficients: np.ndarray     # (3, 5)
@@ -262,6 +562,11 @@ class StripPolynomial:
     centre: np.ndarray           # (2,) X*_c, Y*_c
     residuals: np.ndarray        # corrected − geodetic at the control points, object frame
     dof: int
+
+    def __repr__(self) -> str:
+        rms = float(np.sqrt(np.mean(self.residuals ** 2))) if self.residuals.size else 0.0
+        return (f"StripPolynomial(κ_M = {np.degrees(self.kappa):.3f}°, {len(self.residuals)} control points, "
+                f"dof {self.dof}, r.m.s. residual {rms:.3g} m)")
 
     def correction(self, XYZ) -> np.ndarray:
         """ΔX*, ΔY*, ΔZ* of (3.2.4) in the starred system for object points ``XYZ``."""
@@ -294,6 +599,31 @@ def fit_strip_polynomial(network, geodetic, kappa: float = 0.0, *, rcond: float 
     system is linear: one step of :func:`photolib.lsq.solve_normal_equations`. Internally the
     centred coordinates are divided by half the strip length for conditioning; the returned
     coefficients are for the centred coordinates in metres.
+
+    Returns
+    -------
+    StripPolynomial
+
+    Raises
+    ------
+    InputError
+        Shapes that differ, NaN/inf, fewer than 5 points.
+    DegenerateGeometryError
+        Control points that do not determine (3.2.4) (on one line, not spread across the strip).
+
+    References
+    ----------
+    Chibunichev (2022), §3.2, eqs. (3.2.4)–(3.2.7), fig. 3.5.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.strip_triangulation import fit_strip_polynomial
+    >>> geo = np.array([[0, 100, 5], [0, -100, 8], [1000, 0, 6], [2000, 100, 4], [2000, -100, 7.0]])
+    >>> net = geo + [0.0, 0.0, 0.5]            # a constant height error: Z + C₀ − Z_и = 0 gives C₀ = −0.5
+    >>> poly = fit_strip_polynomial(net, geo)
+    >>> float(poly.coefficients[2, 0].round(6)), bool(abs(poly.apply(net) - geo).max() < 1e-9)
+    (-0.5, True)
     """
     net = as_points(network, 3, "network coordinates of the control points")
     geo = as_points(geodetic, 3, "geodetic coordinates of the control points")
@@ -323,7 +653,29 @@ def fit_strip_polynomial(network, geodetic, kappa: float = 0.0, *, rcond: float 
 # --- §3.3/§3.4 simultaneous adjustment of units ----------------------------------------------------------------
 @dataclass
 class EquationRow:
-    """What one correction equation stands for."""
+    """What one correction equation of §3.3/§3.4 stands for.
+
+    Parameters
+    ----------
+    kind : str
+        "tie" (3.3.1)/(3.4.1), "control" (3.3.2)/(3.4.2) or "gnss" (3.4.3).
+    point : hashable
+        The point id.
+    units : tuple of int
+        (i, j) for a tie, (i,) otherwise.
+    component : str
+        "X", "Y" or "Z".
+
+    References
+    ----------
+    Chibunichev (2022), §3.3, eqs. (3.3.1)–(3.3.4); §3.4, eqs. (3.4.1)–(3.4.3).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import EquationRow
+    >>> EquationRow("tie", 7, (0, 1), "Z").kind
+    'tie'
+    """
 
     kind: str            # "tie" (3.3.1)/(3.4.1), "control" (3.3.2)/(3.4.2), "gnss" (3.4.3)
     point: object
@@ -334,10 +686,41 @@ class EquationRow:
 def tie_pairs(units, adjacency=None) -> list:
     """(point, i, j) for every point measured in two units i < j that are allowed to be tied.
 
-    ``adjacency``: None ties every pair of units sharing a point; otherwise a collection of
-    allowed unit pairs (i, j). The book counts one tie per pair of *adjacent* models (fig. 3.8:
-    a point in a 2 × 2 set of models gives 4 ties), see :func:`grid_adjacency`.
+    The book counts one tie per pair of *adjacent* models (fig. 3.8: a point in a 2 × 2 set of
+    models gives 4 ties), see :func:`grid_adjacency`.
+
+    Parameters
+    ----------
+    units : sequence of UnitModel
+        Strips or models.
+    adjacency : collection of (i, j), optional
+        Allowed unit pairs; None ties every pair of units sharing a point.
+
+    Returns
+    -------
+    list of (id, int, int)
+
+    Raises
+    ------
+    InputError
+        ``units`` holds something that is not a UnitModel.
+
+    References
+    ----------
+    Chibunichev (2022), §3.3, eq. (3.3.1); §3.4, eq. (3.4.1), fig. 3.8.
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)                      # two pair models
+    >>> from photolib.strip_triangulation import tie_pairs
+    >>> tie_pairs(models)
+    [(2, 0, 1), (5, 0, 1), ('S1', 0, 1)]
     """
+    units = list(units)
+    if not all(isinstance(u, UnitModel) for u in units):
+        raise InputError("units must be UnitModel instances")
     allowed = None if adjacency is None else {tuple(sorted(p)) for p in adjacency}
     where = defaultdict(list)
     for u, unit in enumerate(units):
@@ -353,8 +736,36 @@ def tie_pairs(units, adjacency=None) -> list:
 
 
 def grid_adjacency(n_strips: int, per_strip: int) -> set:
-    """Adjacent models of a regular block (units numbered strip by strip): neighbours along a
-    strip and the models with the same position in neighbouring strips."""
+    """Adjacent models of a regular block (units numbered strip by strip).
+
+    Neighbours along a strip and the models with the same position in neighbouring strips.
+
+    Parameters
+    ----------
+    n_strips, per_strip : int
+        Strips, and units per strip.
+
+    Returns
+    -------
+    set of (int, int)
+
+    Raises
+    ------
+    InputError
+        Non-positive or non-integer sizes.
+
+    References
+    ----------
+    Chibunichev (2022), §3.4, fig. 3.8.
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import grid_adjacency
+    >>> sorted(grid_adjacency(2, 2))
+    [(0, 1), (0, 2), (1, 3), (2, 3)]
+    """
+    if _int(n_strips, "n_strips") < 1 or _int(per_strip, "per_strip") < 1:
+        raise InputError("a block needs at least one strip of one unit")
     idx = lambda s, c: s * per_strip + c    # noqa: E731
     pairs = set()
     for s in range(n_strips):
@@ -379,10 +790,56 @@ def unit_equations(units, params, control=None, gnss=None, adjacency=None, *, or
       for a full point, two (X, Y) for a planimetric, one (Z) for a height point (3.3.4);
     * GNSS centres (3.4.3): G(p_i; X_SkMi) − X_Sk = 0 for every unit carrying centre k.
 
-    G = X₀ + A_M·X_M·t (2.10.4). Returns ``(B, L, rows)``: B·δ + L = V with L = computed − given.
+    G = X₀ + A_M·X_M·t (2.10.4).
+
+    Parameters
+    ----------
+    units : sequence of UnitModel
+        Strips or models.
+    params : (n_units, 7) array
+        X₀, Y₀, Z₀, ω_M, α_M, κ_M, t of every unit.
+    control, gnss : dict id -> (X, Y, Z), optional
+        Ground control (NaN: unknown component) and GNSS centres.
+    adjacency : collection of (i, j), optional
+        See :func:`tie_pairs`.
+    order : {"kaw", "wak"}
+        Rotation order.
+
+    Returns
+    -------
+    (B, L, rows)
+        B·δ + L = V with L = computed − given; ``rows`` an :class:`EquationRow` per equation.
+
+    Raises
+    ------
+    InputError
+        ``params`` of the wrong shape or with NaN/inf, no equations at all, malformed control.
+
+    References
+    ----------
+    Chibunichev (2022), §3.3, eqs. (3.3.1)–(3.3.4); §3.4, eqs. (3.4.1)–(3.4.3); §2.10, eq. (2.10.4).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)                      # two pair models
+    >>> ctl = {p: blk.truth([p])[0] for p in (1, 3, 10, 12, 2)}
+    >>> from photolib.strip_triangulation import initial_transforms, unit_equations
+    >>> B, L, rows = unit_equations(models, initial_transforms(models, ctl), ctl)
+    >>> B.shape, rows[0].kind                 # 3m + 3k = 3·3 + 3·6 rows, 7n columns
+    ((27, 14), 'tie')
     """
     units = list(units)
-    params = np.asarray(params, dtype=float).reshape(len(units), 7)
+    if not units or not all(isinstance(u, UnitModel) for u in units):
+        raise InputError("units must be a non-empty sequence of UnitModel")
+    try:
+        params = np.asarray(params, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError("params must be numbers") from None
+    if params.size != 7 * len(units) or not np.all(np.isfinite(params)):
+        raise InputError(f"params: expected {len(units)} × 7 finite elements, got shape {params.shape}")
+    params = params.reshape(len(units), 7)
     res_fn, jac_fn = _similarity_functions(order)
     n = 7 * len(units)
 
@@ -445,13 +902,45 @@ def initial_transforms(units, control=None, gnss=None, *, order: str = DEFAULT_O
 
     1. Free networks: units sharing ≥ 3 non-collinear points are chained as in the continuation
        method (closed-form similarity, :func:`photolib.image_pair.similarity_closed_form`); this
-       splits the block into rigid components (e.g. the strips of fig. 3.8, whose inter-strip
-       tie points lie on one line).
+       splits the block into rigid components (e.g. the strips of fig. 3.8).
     2. Each component is carried onto its known points — control, GNSS centres and the points
        it shares with components already placed — by :func:`photolib.image_pair.absolute_orientation`
        when they are not collinear; otherwise by a level start (ω = α = 0, a 2-D similarity plus
-       a height shift), which suffices because model frames are nearly level. The adjustment
-       then fixes what the start leaves out (e.g. the roll of a strip about its flight line).
+       a height shift). The adjustment then fixes what the start leaves out.
+
+    Parameters
+    ----------
+    units : sequence of UnitModel
+        Strips or models.
+    control, gnss : dict id -> (X, Y, Z), optional
+        Known points.
+    order : {"kaw", "wak"}
+        Rotation order.
+
+    Returns
+    -------
+    (n_units, 7) array
+
+    Raises
+    ------
+    InputError
+        Malformed control.
+    DegenerateGeometryError
+        A component can be neither tied to the block nor oriented by its own known points.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2, eq. (3.2.1); §3.3; §3.4.
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)                      # two pair models
+    >>> ctl = {p: blk.truth([p])[0] for p in (1, 3, 10, 12, 2)}
+    >>> from photolib.strip_triangulation import initial_transforms
+    >>> initial_transforms(models, ctl).shape
+    (2, 7)
     """
     units = list(units)
     identity = SimilarityTransform(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, order)
@@ -523,7 +1012,39 @@ def initial_transforms(units, control=None, gnss=None, *, order: str = DEFAULT_O
 
 @dataclass
 class UnitsAdjustment:
-    """Result of the simultaneous adjustment of independent strips (§3.3) or models (§3.4)."""
+    """Result of the simultaneous adjustment of independent strips (§3.3) or models (§3.4).
+
+    Attributes
+    ----------
+    units : list of UnitModel
+        The adjusted units.
+    transforms : list of SimilarityTransform
+        Seven elements per unit (object frame).
+    adjustment : Adjustment
+        The least-squares record (μ, Q, residuals, history) of :mod:`photolib.lsq`.
+    rows : list of EquationRow
+        One per correction equation.
+    points : dict id -> (3,) array
+        Final X, Y, Z (mean over units, (3.3.5)/(3.4.4)), m.
+    spread : dict id -> (3,) array
+        Largest deviation from the mean per coordinate (multi-unit points), m.
+    shape : (int, int)
+        (M, N) of the design matrix.
+
+    References
+    ----------
+    Chibunichev (2022), §3.3, eq. (3.3.5); §3.4, eq. (3.4.4).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)
+    >>> ctl = {p: blk.truth([p])[0] for p in (1, 3, 10, 12, 2)}
+    >>> from photolib.strip_triangulation import adjust_independent_units
+    >>> adjust_independent_units(models, ctl)          # doctest: +ELLIPSIS
+    UnitsAdjustment(2 units, 15 points, M × N = 27 × 14, μ = ... m, ... iterations)
+    """
 
     units: list
     transforms: list            # SimilarityTransform per unit (object frame)
@@ -533,12 +1054,18 @@ class UnitsAdjustment:
     spread: dict                # id -> max |deviation from the mean| per coordinate (multi-unit points)
     shape: tuple                # (M, N) of the design matrix
 
+    def __repr__(self) -> str:
+        mu = getattr(self.adjustment, "mu", float("nan"))
+        its = getattr(self.adjustment, "iterations", "?")
+        return (f"UnitsAdjustment({len(self.units)} units, {len(self.points)} points, "
+                f"M × N = {self.shape[0]} × {self.shape[1]}, μ = {mu:.3g} m, {its} iterations)")
+
     def residuals(self, kind: str) -> np.ndarray:
         """Residuals V of the equations of one kind ("tie", "control", "gnss")."""
         return self.adjustment.residuals[[r.kind == kind for r in self.rows]]
 
 
-def datum_check(B, P=None, names=(), *, rcond: float = 1e-7, known_points=None, what="control"):
+def _datum_check(B, P=None, names=(), *, rcond: float = 1e-7, known_points=None, what="control"):
     """Raise :class:`DegenerateGeometryError` if B (columns scaled) is (nearly) rank-deficient.
 
     Returns the singular values of the column-equilibrated, weighted design (largest first).
@@ -583,14 +1110,51 @@ def adjust_independent_units(units, control=None, gnss=None, *, adjacency=None, 
     The unknowns are the seven elements X₀, Y₀, Z₀, ω_M, α_M, κ_M, t of every unit, N = 7n
     (3.3.6). The correction equations (:func:`unit_equations`) are iterated by
     :func:`photolib.lsq.gauss_newton` from :func:`initial_transforms`. Before iterating, the rank
-    of the design is checked (:func:`datum_check`): a single strip with GNSS centres only rolls
+    of the design is checked (:func:`_datum_check`): a single strip with GNSS centres only rolls
     freely about its flight line (§3.4) and raises :class:`DegenerateGeometryError` saying so.
     Final coordinates are the means over the units (3.3.5)/(3.4.4).
+
+    initial : (n_units, 7) array, optional
+        Start values (default :func:`initial_transforms`).
+    rcond, tol, max_iter
+        Rank threshold of the datum check, convergence tolerance and iteration limit.
+
+    Returns
+    -------
+    UnitsAdjustment
+
+    Raises
+    ------
+    InputError
+        No units, no datum at all (neither control nor GNSS), fewer equations than unknowns,
+        malformed control, non-positive σ.
+    DegenerateGeometryError
+        A datum defect (e.g. a single strip with GNSS centres only rolls about its flight line).
+    ConvergenceError
+        The iteration did not converge.
+
+    References
+    ----------
+    Chibunichev (2022), §3.3, eqs. (3.3.1)–(3.3.7); §3.4, eqs. (3.4.1)–(3.4.4).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)
+    >>> ctl = {p: blk.truth([p])[0] for p in (1, 3, 10, 12, 2)}
+    >>> from photolib.strip_triangulation import adjust_independent_units
+    >>> res = adjust_independent_units(models, ctl)
+    >>> res.shape, bool(max(abs(res.points[p] - blk.truth([p])[0]).max() for p in res.points) < 1e-6)
+    ((27, 14), True)
     """
     check_order(order)
     units = list(units)
     if not units:
         raise InputError("no units to adjust")
+    for name, v in dict(sigma_tie=sigma_tie, sigma_control=sigma_control, sigma_gnss=sigma_gnss).items():
+        if not (np.isfinite(_float(v, name)) and v > 0):
+            raise InputError(f"{name} must be a finite positive number")
     if control is None and gnss is None:
         raise InputError("neither ground control nor GNSS centres given: the block has no datum (§3.3, §3.4)")
     x0 = initial_transforms(units, control, gnss, order=order) if initial is None \
@@ -607,7 +1171,7 @@ def adjust_independent_units(units, control=None, gnss=None, *, adjacency=None, 
         raise InputError(f"{B.shape[0]} correction equations cannot determine {B.shape[1]} unknowns")
     known = [X for k in (control, gnss) if k for X in k.values()]
     what = "GNSS centres" if gnss and not control else "control and GNSS points"
-    datum_check(B, P, names, rcond=rcond, known_points=np.nan_to_num(np.array(known)) if known else None,
+    _datum_check(B, P, names, rcond=rcond, known_points=np.nan_to_num(np.array(known)) if known else None,
                 what=what)
 
     def linearize(x):
@@ -630,13 +1194,49 @@ def adjust_independent_units(units, control=None, gnss=None, *, adjacency=None, 
 
 
 def image_orientations(units, transforms, order: str | None = None) -> dict:
-    """Exterior orientation of every image from its models' (3.4.4)–(3.4.6).
+    """Exterior orientation of every image from its models' elements, (3.4.4)–(3.4.6).
 
     For each model, S = X₀ + A_M·S_M·t and A = A_M·A' (3.4.5) via
     :func:`photolib.image_pair.image_orientation_from_model`; an image in two models gets the mean
     centre and the mean rotation (projected back onto a rotation matrix); the angles follow by
     (3.4.6) in ``order`` (the book's (3.4.6) is the ω-α-κ extraction, ``order="wak"``).
+
+    Parameters
+    ----------
+    units : sequence of UnitModel
+        Pair models carrying their stereo model (:func:`pair_model`).
+    transforms : sequence of SimilarityTransform
+        Their adjusted elements.
+    order : {"kaw", "wak"}, optional
+        Order of the returned angles (default: that of the transforms).
+
+    Returns
+    -------
+    dict image -> ExteriorOrientation
+
+    Raises
+    ------
+    InputError
+        A unit without a stereo model, units and transforms of different count.
+
+    References
+    ----------
+    Chibunichev (2022), §3.4, eqs. (3.4.4)–(3.4.6).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)                      # two pair models
+    >>> ctl = {p: blk.truth([p])[0] for p in (1, 3, 10, 12, 2)}
+    >>> from photolib.strip_triangulation import adjust_independent_units, image_orientations
+    >>> eos = image_orientations(models, adjust_independent_units(models, ctl).transforms)
+    >>> sorted(eos), bool(abs(eos[1].vector - blk.cameras[1]).max() < 1e-6)
+    ([0, 1, 2], True)
     """
+    units, transforms = list(units), list(transforms)
+    if len(units) != len(transforms) or not units:
+        raise InputError(f"{len(units)} units and {len(transforms)} transforms")
     centres, matrices = defaultdict(list), defaultdict(list)
     for unit, T in zip(units, transforms):
         if unit.stereo is None or len(unit.images) != 2:
@@ -657,8 +1257,33 @@ def image_orientations(units, transforms, order: str | None = None) -> dict:
 def count_independent_strips(n: int, m: int, k: int, i: int = 0, l: int = 0) -> tuple:   # noqa: E741
     """(N, M) of the independent-strip method: N = 7n (3.3.6), M = 3m + 3k + 2i + l (3.3.7).
 
-    n strips, m inter-strip tie points, k full control points measured in strips (counted once
-    per strip), i planimetric and l height control points measured in strips.
+    Parameters
+    ----------
+    n : int
+        Strips.
+    m : int
+        Inter-strip tie points.
+    k, i, l : int
+        Full, planimetric and height control points measured in strips (counted once per strip).
+
+    Returns
+    -------
+    (int, int)
+
+    Raises
+    ------
+    InputError
+        Negative or non-integer counts, no strip.
+
+    References
+    ----------
+    Chibunichev (2022), §3.3, eqs. (3.3.6), (3.3.7), fig. 3.7.
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import count_independent_strips
+    >>> count_independent_strips(3, 14, 8)
+    (21, 66)
     """
     _check_counts(n=n, m=m, k=k, i=i, l=l)
     return 7 * n, 3 * m + 3 * k + 2 * i + l
@@ -667,9 +1292,36 @@ def count_independent_strips(n: int, m: int, k: int, i: int = 0, l: int = 0) -> 
 def count_independent_models(n: int, m: int, k: int, i: int = 0, l: int = 0, gnss: bool = False) -> tuple:  # noqa: E741
     """(N, M, S) of the independent-model method (§3.4): N = 7n, M = 3m + 3k + 2i + l + S.
 
-    m tie points on adjacent models (one per pair of adjacent models sharing the point,
-    projection centres included), k/i/l full/planimetric/height control points measured on models;
-    S = 6n equations of GNSS centres (two centres × three coordinates per model) or 0.
+    Parameters
+    ----------
+    n : int
+        Models.
+    m : int
+        Tie points on adjacent models (one per pair of adjacent models sharing the point,
+        projection centres included).
+    k, i, l : int
+        Full, planimetric and height control points measured on models.
+    gnss : bool
+        S = 6n equations of GNSS centres (two centres × three coordinates per model), else 0.
+
+    Returns
+    -------
+    (int, int, int)
+
+    Raises
+    ------
+    InputError
+        Negative or non-integer counts, no model.
+
+    References
+    ----------
+    Chibunichev (2022), §3.4, fig. 3.8, eq. (3.4.3).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import count_independent_models
+    >>> count_independent_models(6, 18, 6, gnss=True)
+    (42, 108, 36)
     """
     _check_counts(n=n, m=m, k=k, i=i, l=l)
     S = 6 * n if gnss else 0
@@ -689,6 +1341,38 @@ def structure_counts(units, control=None, gnss=None, adjacency=None) -> dict:
 
     m = number of (point, adjacent unit pair) ties; k, i, l = full, planimetric, height control
     points counted once per unit that measures them; S = 3 × (GNSS centre, unit) pairs.
+
+    Parameters
+    ----------
+    units : sequence of UnitModel
+        Strips or models.
+    control, gnss : dict id -> (X, Y, Z), optional
+        Known points.
+    adjacency : collection of (i, j), optional
+        See :func:`tie_pairs`.
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    InputError
+        Malformed control.
+
+    References
+    ----------
+    Chibunichev (2022), §3.3, eqs. (3.3.6), (3.3.7); §3.4.
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)                      # two pair models
+    >>> ctl = {p: blk.truth([p])[0] for p in (1, 3, 10, 12, 2)}
+    >>> from photolib.strip_triangulation import structure_counts
+    >>> structure_counts(models, ctl)
+    {'n': 2, 'm': 3, 'k': 6, 'i': 0, 'l': 0, 'S': 0}
     """
     units = list(units)
     out = {"n": len(units), "m": len(tie_pairs(units, adjacency)), "k": 0, "i": 0, "l": 0, "S": 0}
@@ -702,78 +1386,90 @@ def structure_counts(units, control=None, gnss=None, adjacency=None) -> dict:
 
 
 # --- synthetic layouts ----------------------------------------------------------------------------------------
-ORIENTATION, TIE_POINT = 0, 1
-
-
-@dataclass
-class LayoutBlock:
-    """A simulated block on a regular layout, with its ground truth (see :func:`layout_block`)."""
-
-    io: InteriorOrientation           # the camera the images are processed with
-    order: str
-    cameras: np.ndarray               # (n, 6) true X_S, Y_S, Z_S, ω, α, κ
-    strip: np.ndarray                 # (n,) strip of each image
-    column: np.ndarray                # (n,) position of each image in its strip
-    ids: np.ndarray                   # (k,) point ids (ints)
-    points: np.ndarray                # (k, 3) true X, Y, Z
-    kind: np.ndarray                  # (k,) TIE_POINT or ORIENTATION
-    grid: np.ndarray                  # (k, 2) (column, row) position in base / strip-spacing units
-    observations: dict                # image -> (ids, xy (mm))
-    base: float
-    spacing: float
-    footprint: float
-
-    def truth(self, ids) -> np.ndarray:
-        """True object coordinates of point ids and centre ids ("S<k>")."""
-        index = {int(p): i for i, p in enumerate(self.ids)}
-        out = []
-        for p in ids:
-            if isinstance(p, str) and p.startswith("S"):
-                out.append(self.cameras[int(p[1:]), :3])
-            else:
-                out.append(self.points[index[int(p)]])
-        return np.array(out)
-
-    def images_of_strip(self, s: int) -> np.ndarray:
-        return np.flatnonzero(self.strip == s)[np.argsort(self.column[self.strip == s])]
-
-    def point_at(self, column: float, row: float) -> int:
-        """Id of the point at grid position (column, row)."""
-        hit = np.flatnonzero(np.all(np.isclose(self.grid, [column, row]), axis=1))
-        if hit.size != 1:
-            raise InputError(f"no point at grid position ({column}, {row})")
-        return int(self.ids[hit[0]])
-
-
 def layout_block(n_strips: int = 1, images_per_strip: int = 7, *, f: float = 100.0, frame_size: float = 230.0,
                  flying_height: float = 1000.0, forward_overlap: float = 0.6, side_overlap: float = 0.3,
                  principal_rows: bool = False, row_offset: float = 0.35, orientation_offset: float = 0.15,
                  relief: float = 30.0, angle_sigma: float = np.radians(1.0), lateral_sigma: float = 0.0,
                  height_sigma: float = 0.0, sigma: float = 0.0, distortion_k1: float = 0.0,
-                 order: str = DEFAULT_ORDER, seed: int = 0) -> LayoutBlock:
+                 order: str = DEFAULT_ORDER, seed: int = 0) -> Block:
     """Simulate vertical images on the regular layout of figs 3.2, 3.7, 3.8.
 
     Strips run along X (base b = (1 − p)L, L the footprint side), stacked along −Y (spacing
-    s = (1 − q)L). Tie points sit in the columns of the principal points, x = c·b, on the rows
-    y = s/2 − j·s (the outer edges and the side-overlap bands, as in fig. 3.8) and, with
-    ``principal_rows``, also on the strip axes; a row at ±``row_offset``·L is used instead of
-    ±s/2 for a single strip. Each column point is in the triple overlap of images c−1, c, c+1,
-    i.e. common to two adjacent models. Orientation points at x = (c + ½)·b, y = −j·s +
-    {−1, 0, 1}·``orientation_offset``·L belong to one model only (they complete the relative
-    orientation). The projection centres lie exactly on straight flight lines unless
-    ``lateral_sigma`` / ``height_sigma`` (m) scatter them. Observations are the collinearity
-    projections (1.4.12) into every image that sees a point; ``distortion_k1`` (mm⁻²) simulates an
-    uncorrected radial lens distortion (the systematic error of §3.2), ``sigma`` image noise (mm).
+    s = (1 − q)L) — :func:`photolib.synthetic.strip_layout`. Tie points sit in the columns of the
+    principal points, x = c·b, on the rows y = s/2 − j·s (the outer edges and the side-overlap
+    bands, as in fig. 3.8) and, with ``principal_rows``, also on the strip axes; a row at
+    ±``row_offset``·L is used instead of ±s/2 for a single strip. Each column point is in the
+    triple overlap of images c−1, c, c+1, i.e. common to two adjacent models. Orientation points
+    at x = (c + ½)·b, y = −j·s + {−1, 0, 1}·``orientation_offset``·L belong to one model only (they
+    complete the relative orientation). The projection centres lie exactly on straight flight
+    lines unless ``lateral_sigma`` / ``height_sigma`` (m) scatter them. Observations are the
+    collinearity projections (1.4.12) into every image that sees a point.
+
+    Parameters
+    ----------
+    n_strips, images_per_strip : int
+        Block size (at least one strip of two images).
+    f, frame_size, flying_height : float
+        Focal length and image format (mm), flying height above the mean terrain (m).
+    forward_overlap, side_overlap : float
+        Overlaps p, q as fractions.
+    principal_rows : bool
+        Also put tie points on the strip axes.
+    row_offset, orientation_offset : float
+        Offsets of the tie rows of a single strip and of the orientation points, in footprints.
+    relief : float
+        Terrain relief, m (:func:`photolib.synthetic.terrain_height`).
+    angle_sigma, lateral_sigma, height_sigma : float
+        Seeded spread of the true angles (rad), of the centres across the strip and in height (m).
+    sigma : float
+        Image noise, mm.
+    distortion_k1 : float
+        Uncorrected radial distortion k₁ (mm⁻²) — the systematic error of §3.2.
+    order : {"kaw", "wak"}
+        Rotation order.
+    seed : int
+        Seed.
+
+    Returns
+    -------
+    photolib.synthetic.Block
+        Point labels 1, 2, …; ``kind`` TIE or ORIENTATION; ``grid_position`` (column, row) in base
+        and strip-spacing units (:meth:`~photolib.synthetic.Block.point_at`); ``strip``, ``column``.
+
+    Raises
+    ------
+    InputError
+        Too few images, overlaps outside their range, NaN/inf or negative spreads and σ.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2 (fig. 3.2, (3.2.1)), §3.3 (fig. 3.7), §3.4 (fig. 3.8).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block
+    >>> blk = layout_block(1, 4, seed=0)
+    >>> blk.n_images, blk.point_at(1, 0.35 * blk.footprint / blk.strip_spacing), blk.base
+    (4, 2, 920.0)
     """
     check_order(order)
-    if n_strips < 1 or images_per_strip < 2:
+    if _int(n_strips, "n_strips") < 1 or _int(images_per_strip, "images_per_strip") < 2:
         raise InputError("a layout needs at least one strip of two images")
+    for name, value in dict(relief=relief, row_offset=row_offset, orientation_offset=orientation_offset).items():
+        if not np.isfinite(_float(value, name)):
+            raise InputError(f"{name} must be finite")
+    for name, value in dict(angle_sigma=angle_sigma, lateral_sigma=lateral_sigma, height_sigma=height_sigma,
+                            sigma=sigma).items():
+        v = _float(value, name)
+        if not (np.isfinite(v) and v >= 0):
+            raise InputError(f"{name} must be a finite non-negative number")
+    if not np.isfinite(_float(distortion_k1, "distortion_k1")):
+        raise InputError("distortion_k1 must be finite")
+    lay = strip_layout(n_strips, images_per_strip, f=f, frame_size=frame_size, flying_height=flying_height,
+                       forward_overlap=forward_overlap, side_overlap=side_overlap)
+    L, b, s, strip, column = lay
     rng = np.random.default_rng(seed)
-    L = frame_size * flying_height / f
-    b, s = (1 - forward_overlap) * L, (1 - side_overlap) * L
     mean_h = 150.0
-    strip = np.repeat(np.arange(n_strips), images_per_strip)
-    column = np.tile(np.arange(images_per_strip), n_strips)
     n = strip.size
     cams = np.empty((n, 6))
     cams[:, 0] = column * b
@@ -789,7 +1485,7 @@ def layout_block(n_strips: int = 1, images_per_strip: int = 7, *, f: float = 100
         for c in range(images_per_strip):
             grid.append((c, y / s))
             xy.append((c * b, y))
-            kind.append(TIE_POINT)
+            kind.append(TIE)
     for j in range(n_strips):
         for c in range(images_per_strip - 1):
             for d in (1, 0, -1):
@@ -803,7 +1499,7 @@ def layout_block(n_strips: int = 1, images_per_strip: int = 7, *, f: float = 100
     io = InteriorOrientation(f=f)
     io_true = InteriorOrientation(f=f, k1=distortion_k1) if distortion_k1 else io
     from .single_image import project
-    obs = {}
+    image_idx, point_idx, meas_all, true_all = [], [], [], []
     half = frame_size / 2
     for k in range(n):
         eo = ExteriorOrientation(*cams[k], order=order)
@@ -812,25 +1508,64 @@ def layout_block(n_strips: int = 1, images_per_strip: int = 7, *, f: float = 100
         inside = np.all(np.abs(p_xy) < half * 0.999, axis=1)
         sel = np.flatnonzero(near)[inside]
         meas = p_xy[inside] + (rng.normal(0, sigma, (inside.sum(), 2)) if sigma else 0.0)
-        obs[k] = (ids[sel], meas)
-    return LayoutBlock(io, order, cams, strip, column, ids, points, np.array(kind), np.array(grid), obs,
-                       float(b), float(s), float(L))
+        image_idx.append(np.full(sel.size, k))
+        point_idx.append(sel)
+        meas_all.append(meas)
+        true_all.append(p_xy[inside])
+    obs = Observations(np.concatenate(image_idx), np.concatenate(point_idx), np.vstack(meas_all))
+    return Block(io=io, order=order, cameras=cams, points=points, kind=np.array(kind, dtype=int), observations=obs,
+                 xy_true=np.vstack(true_all), sigma=float(sigma), strip=strip, column=column,
+                 frame_size=float(frame_size), footprint=float(L), base=float(b), strip_spacing=float(s),
+                 point_labels=tuple(int(i) for i in ids), grid_position=np.array(grid))
 
 
-def layout_models(block: LayoutBlock, strips=None, *, base_length: float | None = None) -> list:
+def layout_models(block: Block, strips=None, *, base_length: float | None = None) -> list:
     """Independent pair models of adjacent images of each strip of ``block`` (§3.2, §3.4).
 
     Each model holds the points measured on both images plus the two projection centres.
-    ``base_length`` (model units) defaults to the nominal base b, so t ≈ 1.
+
+    Parameters
+    ----------
+    block : photolib.synthetic.Block
+        A regular layout (:func:`layout_block`).
+    strips : iterable of int, optional
+        Strips to use (default all).
+    base_length : float, optional
+        Model base (model units); default the nominal base b, so t ≈ 1.
+
+    Returns
+    -------
+    list of UnitModel
+
+    Raises
+    ------
+    InputError
+        ``block`` without strips, a strip that does not exist.
+
+    References
+    ----------
+    Chibunichev (2022), §3.2 (models of a strip), §3.4 (independent models).
+
+    Examples
+    --------
+    >>> from photolib.strip_triangulation import layout_block, layout_models
+    >>> blk = layout_block(1, 3, seed=0)
+    >>> models = layout_models(blk)                      # two pair models
+    >>> [m.name for m in models]
+    ['M0-1', 'M1-2']
     """
-    strips = range(int(block.strip.max()) + 1) if strips is None else strips
+    if not isinstance(block, Block) or block.strip is None:
+        raise InputError("layout_models needs a photolib.synthetic.Block with strips (layout_block)")
+    strips = range(int(block.strip.max()) + 1) if strips is None else list(strips)
+    if any(_int(k, "strip") not in set(block.strip.tolist()) for k in strips):
+        raise InputError(f"the block has strips 0 … {int(block.strip.max())}")
     B = block.base if base_length is None else base_length
     models = []
     for s in strips:
         imgs = block.images_of_strip(s)
         for k1, k2 in zip(imgs[:-1], imgs[1:]):
-            id1, xy1 = block.observations[k1]
-            id2, xy2 = block.observations[k2]
+            id1, xy1 = block.measurements(k1)
+            id2, xy2 = block.measurements(k2)
             common, i1, i2 = np.intersect1d(id1, id2, return_indices=True)
             models.append(pair_model([int(p) for p in common], xy1[i1], xy2[i2], block.io, (int(k1), int(k2)),
                                      order=block.order, base_length=B))

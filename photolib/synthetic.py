@@ -1,11 +1,24 @@
-"""Synthetic aerial blocks with known truth — test data for Chapter 3 (§3.1, §3.5).
+"""Synthetic blocks with known truth — test data for Chapter 3 (§3.1–§3.9).
 
-The book prints no image coordinates for its phototriangulation examples, so the bundle method
-is demonstrated, tested and benchmarked on simulated blocks: :func:`aerial_block` lays out
-strips of vertical frame images over gently rolling terrain with a chosen forward and side
-overlap (60 % / 30 % by default, the layout of fig. 3.13), scatters tie points so that each
-image sees a chosen number of them, places control and check points, projects everything with
-the collinearity equations (1.4.12)/(3.5.1) and adds Gaussian image noise. Everything is seeded.
+The book prints no image coordinates for its phototriangulation examples, so strip, block and
+bundle triangulation are demonstrated, tested and benchmarked on simulated blocks. Every
+generator returns the one block type :class:`Block` (ground truth, noisy observations, the
+simulation settings), whose points carry one :class:`PointKind` each:
+
+* :func:`aerial_block` — strips of vertical frame images over gently rolling terrain with a
+  chosen forward and side overlap (60 % / 30 % by default, the layout of fig. 3.13, §3.1, §3.5);
+* :func:`footprint_block` — given projection centres and points, the points seen on an image are
+  those inside its square footprint (the counting rule of figs. 3.10/3.13, §3.5), optionally as
+  the images of a multi-camera rig (§3.8);
+* :func:`rig_block` — a Penta-like five-camera rig (§3.8, figs. 3.14, 3.16);
+* :func:`rolling_shutter_block` — a UAV block shot with a rolling shutter (§3.9, (3.9.1)/(3.9.2));
+* :func:`corridor_strip` — a single-strip UAV corridor with GNSS centres and a moving target
+  (§3.9, figs. 3.25/3.26).
+
+The camera layout of the regular generators (footprint, base, strip spacing, strip and column
+of every image) is one function, :func:`strip_layout`; the regular layouts of §3.2–§3.4 are
+:func:`photolib.strip_triangulation.layout_block`. Projections use the collinearity equations
+(1.4.12)/(3.5.1). Everything is seeded.
 
 Units as everywhere in photolib: image coordinates and f in mm, object coordinates in metres,
 angles in radians.
@@ -13,7 +26,9 @@ angles in radians.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from enum import IntEnum
+from typing import NamedTuple
 
 import numpy as np
 
@@ -22,70 +37,609 @@ from .errors import InputError
 from .single_image import project_to_images
 from .rotation import check_order
 
-TIE, CONTROL, CHECK = 0, 1, 2
-"""Point kinds in :attr:`SyntheticBlock.kind`."""
+__all__ = ["PointKind", "TIE", "CONTROL", "CHECK", "ORIENTATION", "Observations", "Block", "StripLayout",
+           "strip_layout", "terrain_height", "footprint_visibility", "aerial_block", "footprint_block",
+           "rig_block", "rolling_shutter_block", "corridor_strip", "StereoPair", "stereo_pair"]
 
 
-@dataclass(frozen=True)
+class PointKind(IntEnum):
+    """What a point of a synthetic block is: the one point-kind enumeration of photolib.
+
+    Attributes
+    ----------
+    TIE : 0
+        A tie (pass) point: its coordinates are unknowns of the adjustment.
+    CONTROL : 1
+        A ground control point: known object coordinates (held fixed (3.5.3) or weighted (3.5.17)).
+    CHECK : 2
+        A check point: adjusted like a tie point, compared with its truth afterwards (§3.7).
+    ORIENTATION : 3
+        A relative-orientation point of one model only (not an inter-model tie, §3.2–§3.4).
+
+    References
+    ----------
+    Chibunichev (2022), §3.2 (tie and orientation points), §3.5 (control, (3.5.3), (3.5.17)),
+    §3.7 (check points).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import PointKind, CONTROL
+    >>> PointKind(1) is CONTROL, int(PointKind.CHECK)
+    (True, 2)
+    """
+
+    TIE = 0
+    CONTROL = 1
+    CHECK = 2
+    ORIENTATION = 3
+
+    @classmethod
+    def _missing_(cls, value):
+        raise InputError(f"unknown point kind {value!r}; use one of "
+                         + ", ".join(f"{k.name} = {k.value}" for k in cls))
+
+
+TIE, CONTROL, CHECK, ORIENTATION = PointKind.TIE, PointKind.CONTROL, PointKind.CHECK, PointKind.ORIENTATION
+
+
+def _finite(value, what: str, positive: bool = False, nonnegative: bool = False) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be a number, got {value!r}") from None
+    if not np.isfinite(v) or (positive and not v > 0) or (nonnegative and not v >= 0):
+        raise InputError(f"{what} must be a finite{' positive' if positive else ''}"
+                         f"{' non-negative' if nonnegative else ''} number, got {value!r}")
+    return v
+
+
+def _count(value, what: str, minimum: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        if not (isinstance(value, (float, np.floating)) and float(value).is_integer()):
+            raise InputError(f"{what} must be an integer, got {value!r}")
+    if int(value) < minimum:
+        raise InputError(f"{what} must be at least {minimum}, got {value!r}")
+    return int(value)
+
+
+@dataclass(frozen=True, eq=False)
 class Observations:
-    """Image measurements: point ``point[k]`` measured at ``xy[k]`` (mm) on image ``image[k]``."""
+    """Image measurements: point ``point[k]`` measured at ``xy[k]`` (mm) on image ``image[k]``.
+
+    Parameters
+    ----------
+    image, point : (m,) int arrays
+        Image and point index of every measurement (non-negative).
+    xy : (m, 2) float array
+        Measured image coordinates x, y in mm (finite).
+
+    Raises
+    ------
+    InputError
+        Shapes that do not match, negative or non-integer indices, NaN or inf coordinates.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5: the measured x, y of (3.5.1)/(3.5.2), image by image (fig. 3.11).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import Observations
+    >>> obs = Observations([0, 0, 1], [0, 1, 0], [[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]])
+    >>> len(obs), obs
+    (3, Observations(3 measurements of 2 points on 2 images))
+    """
 
     image: np.ndarray      # (m,) int
     point: np.ndarray      # (m,) int
     xy: np.ndarray         # (m, 2) float, mm
 
+    def __post_init__(self):
+        idx = {}
+        for name in ("image", "point"):
+            raw = np.asarray(getattr(self, name))
+            if raw.ndim != 1:
+                raise InputError(f"observations: {name} must be a 1-D array of indices, got shape {raw.shape}")
+            if raw.size and (raw.dtype.kind not in "iu" and not (raw.dtype.kind == "f"
+                                                                 and np.all(np.isfinite(raw))
+                                                                 and np.all(raw == np.round(raw)))):
+                raise InputError(f"observations: {name} indices must be integers")
+            arr = raw.astype(np.intp)
+            if arr.size and arr.min() < 0:
+                raise InputError(f"observations: negative {name} index")
+            idx[name] = arr
+        try:
+            xy = np.asarray(self.xy, dtype=float)
+        except (TypeError, ValueError):
+            raise InputError("observations: xy must be numbers") from None
+        if xy.size == 0:
+            xy = xy.reshape(0, 2)
+        if xy.ndim != 2 or xy.shape[1] != 2:
+            raise InputError(f"observations: xy must have shape (m, 2), got {xy.shape}")
+        if not (len(idx["image"]) == len(idx["point"]) == len(xy)):
+            raise InputError(f"observations: {len(idx['image'])} image indices, {len(idx['point'])} point "
+                             f"indices and {len(xy)} coordinate pairs")
+        if not np.all(np.isfinite(xy)):
+            raise InputError("observations: xy contain NaN or inf")
+        object.__setattr__(self, "image", idx["image"])
+        object.__setattr__(self, "point", idx["point"])
+        object.__setattr__(self, "xy", xy)
+
     def __len__(self) -> int:
         return int(self.image.shape[0])
 
+    def __repr__(self) -> str:
+        return (f"Observations({len(self)} measurements of {np.unique(self.point).size} points "
+                f"on {np.unique(self.image).size} images)")
 
-@dataclass(frozen=True)
-class SyntheticBlock:
-    """A simulated block: ground truth, noisy observations and the simulation settings."""
+
+class StripLayout(NamedTuple):
+    """The camera layout of a regular block: see :func:`strip_layout`.
+
+    Attributes
+    ----------
+    footprint : float
+        Side L of the square ground footprint of an image, m.
+    base : float
+        Photo base b = (1 − p)·L, m.
+    spacing : float
+        Distance between strip axes (1 − q)·L, m.
+    strip, column : (n,) int arrays
+        Strip and position in the strip of every image (strip by strip).
+
+    References
+    ----------
+    Chibunichev (2022), §3.1 and §3.7 (forward overlap p ≥ 60 %, side overlap q ≥ 30 %).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import StripLayout
+    >>> StripLayout(1000.0, 400.0, 700.0, [0, 0], [0, 1]).base
+    400.0
+    """
+
+    footprint: float
+    base: float
+    spacing: float
+    strip: np.ndarray
+    column: np.ndarray
+
+
+def strip_layout(n_strips: int, images_per_strip: int, *, f: float, frame_size: float, flying_height: float,
+                 forward_overlap: float, side_overlap: float) -> StripLayout:
+    """Footprint, base, strip spacing and the strip/column of every image of a regular block.
+
+    The one layout arithmetic of the synthetic generators: strips run along X and are stacked
+    along −Y; images are numbered strip by strip.
+
+    Parameters
+    ----------
+    n_strips, images_per_strip : int
+        Block size (at least one strip of one image).
+    f, frame_size : float
+        Focal length and side of the square image format, mm.
+    flying_height : float
+        Height above the terrain, m; the footprint is L = frame_size · flying_height / f.
+    forward_overlap, side_overlap : float
+        Overlaps as fractions: p in (0, 1), q in [0, 1).
+
+    Returns
+    -------
+    StripLayout
+        ``footprint``, ``base`` = (1 − p)L, ``spacing`` = (1 − q)L, ``strip``, ``column``.
+
+    Raises
+    ------
+    InputError
+        Non-positive or non-finite sizes, overlaps outside their range, too few images.
+
+    References
+    ----------
+    Chibunichev (2022), §3.1 (layout of strips), §3.7 (overlaps of the Instruction, 3.1.1).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import strip_layout
+    >>> lay = strip_layout(2, 3, f=100.0, frame_size=100.0, flying_height=1000.0,
+    ...                    forward_overlap=0.6, side_overlap=0.3)
+    >>> lay.footprint, lay.base, lay.spacing, lay.strip.tolist(), lay.column.tolist()
+    (1000.0, 400.0, 700.0, [0, 0, 0, 1, 1, 1], [0, 1, 2, 0, 1, 2])
+    """
+    n_strips = _count(n_strips, "n_strips", 1)
+    images_per_strip = _count(images_per_strip, "images_per_strip", 1)
+    f = _finite(f, "f", positive=True)
+    frame_size = _finite(frame_size, "frame_size", positive=True)
+    flying_height = _finite(flying_height, "flying_height", positive=True)
+    p = _finite(forward_overlap, "forward_overlap")
+    q = _finite(side_overlap, "side_overlap")
+    if not (0 < p < 1 and 0 <= q < 1):
+        raise InputError("overlaps must be fractions: forward in (0, 1), side in [0, 1)")
+    footprint = frame_size * flying_height / f
+    strip = np.repeat(np.arange(n_strips), images_per_strip)
+    column = np.tile(np.arange(images_per_strip), n_strips)
+    return StripLayout(footprint, (1 - p) * footprint, (1 - q) * footprint, strip, column)
+
+
+def footprint_visibility(points_xy, centres_xy, footprint: float) -> np.ndarray:
+    """Which points lie strictly inside the square footprint of which image (vertical images).
+
+    The footprint of side ``footprint`` is centred on the nadir (X_S, Y_S); a point on its edge
+    is not measured. This is the counting rule of the rebuilt figs. 3.10/3.13.
+
+    Parameters
+    ----------
+    points_xy : (k, 2) array
+        X, Y of the points, m.
+    centres_xy : (n, 2) array
+        X_S, Y_S of the projection centres, m.
+    footprint : float
+        Side L of the footprint, m.
+
+    Returns
+    -------
+    (k, n) bool array
+        ``True`` where point j is inside the footprint of image i.
+
+    Raises
+    ------
+    InputError
+        NaN/inf or wrong shapes, a non-positive footprint.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, figs. 3.10 and 3.13 (images per point).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import footprint_visibility
+    >>> footprint_visibility([[0, 0], [400, 0], [700, 0]], [[0, 0], [500, 0]], 1000.0).astype(int)
+    array([[1, 0],
+           [1, 1],
+           [0, 1]])
+    """
+    from .camera import as_points
+    p = as_points(points_xy, 2, "points_xy") if np.size(points_xy) else np.zeros((0, 2))
+    c = as_points(centres_xy, 2, "centres_xy")
+    footprint = _finite(footprint, "footprint", positive=True)
+    d = np.abs(p[:, None, :] - c[None, :, :])
+    return np.all(d < footprint / 2 * (1 - 1e-9), axis=2)
+
+
+_NAN = float("nan")
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Block:
+    """A simulated block: ground truth, observations and the simulation settings — photolib's one block type.
+
+    The variants are optional fields: a multi-camera rig (§3.8) sets ``ios``, ``exposures``,
+    ``mounts``, ``exposure_of_image``, ``camera_of_image``; a rolling-shutter block (§3.9) sets
+    ``rates``; a corridor (§3.9) sets ``gnss`` and ``target``; a rebuild of a book figure sets
+    ``name``, ``image_labels``, ``point_labels`` and ``grid``; a regular layout of §3.2–§3.4 sets
+    ``column`` and ``grid_position``.
+
+    Parameters
+    ----------
+    io : InteriorOrientation
+        The camera (of camera 0 for a rig).
+    order : {"kaw", "wak"}
+        Rotation order of the angles.
+    cameras : (n, 6) array
+        True X_S, Y_S, Z_S, ω, α, κ of every image.
+    points : (k, 3) array
+        True X, Y, Z.
+    kind : (k,) array of PointKind
+        TIE, CONTROL, CHECK or ORIENTATION.
+    observations : Observations
+        The (noisy) measurements.
+    xy_true : (m, 2) array, optional
+        The noise-free measurements.
+    sigma : float
+        Image noise σ, mm.
+    strip, column : (n,) int arrays, optional
+        Strip and position in the strip of every image.
+    frame_size, footprint, base, strip_spacing : float
+        Image format (mm), footprint side, photo base, distance of strip axes (m).
+    name : str
+        A name, e.g. "fig3.10".
+    image_labels, point_labels : tuple, optional
+        Labels of the images and points (default: their indices).
+    grid : (rows, cols), optional
+        The points form a grid of this shape (fig. 3.13).
+    grid_position : (k, 2) array, optional
+        (column, row) of each point in base / strip-spacing units (regular layouts).
+    control_sigma : float, optional
+        None: control is held fixed (3.5.3); else its coordinates are weighted (3.5.17), m.
+    gnss : (n, 3) array, optional
+        Measured projection centres (3.5.18), m (NaN rows: not measured).
+    gnss_sigma : float
+        Their accuracy, m.
+    noise_seed : int
+        Seed of the noise of weighted control coordinates.
+    start_sigma : (3,) tuple
+        Default spread of :meth:`start_values`: centres (m), angles (rad), points (m).
+    ios, exposures, mounts, exposure_of_image, camera_of_image : optional
+        Rig (§3.8): camera per rig camera, reference EO per exposure, mounting elements of cameras
+        1 … n_s − 1 (B_X, B_Y, B_Z, ω′, α′, κ′), exposure and camera of every image.
+    rates : (n, 6) array, optional
+        Rolling shutter (§3.9): k₁ … k₆ of (3.9.2) per image.
+    target : (n,) int array, optional
+        Corridor (§3.9): the dynamic control point seen on image i (−1: none).
+
+    Raises
+    ------
+    InputError
+        Wrong shapes, NaN/inf in the truth, observations of non-existent images or points.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5 (bundle block, (3.5.1)–(3.5.3), (3.5.17)–(3.5.19)), §3.8 ((3.8.5),
+    (3.8.8)), §3.9 ((3.9.1)/(3.9.2)).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import aerial_block
+    >>> blk = aerial_block(1, 3, points_per_image=8, n_check=0, seed=0)
+    >>> blk.n_images, blk.cameras.shape
+    (3, (3, 6))
+    >>> blk                                    # doctest: +ELLIPSIS
+    Block(3 images, ... points (... tie, ... control), ... measurements, σ = 5 µm, order kaw)
+    """
 
     io: InteriorOrientation
     order: str
-    cameras: np.ndarray        # (n, 6) true X_S, Y_S, Z_S, ω, α, κ
-    points: np.ndarray         # (k, 3) true X, Y, Z
-    kind: np.ndarray           # (k,) TIE / CONTROL / CHECK
-    observations: Observations  # noisy measurements
-    xy_true: np.ndarray        # (m, 2) noise-free projections
-    sigma: float               # image noise σ (mm)
-    strip: np.ndarray          # (n,) strip number of each image
-    frame_size: float          # side of the square image format (mm)
-    base: float                # photo base (m)
-    strip_spacing: float       # distance between strip axes (m)
+    cameras: np.ndarray
+    points: np.ndarray
+    kind: np.ndarray
+    observations: Observations
+    xy_true: np.ndarray | None = None
+    sigma: float = 0.0
+    strip: np.ndarray | None = None
+    column: np.ndarray | None = None
+    frame_size: float = _NAN
+    footprint: float = _NAN
+    base: float = _NAN
+    strip_spacing: float = _NAN
+    name: str = ""
+    image_labels: tuple | None = None
+    point_labels: tuple | None = None
+    grid: tuple | None = None
+    grid_position: np.ndarray | None = None
+    control_sigma: float | None = None
+    gnss: np.ndarray | None = None
+    gnss_sigma: float = _NAN
+    noise_seed: int = 0
+    start_sigma: tuple = (5.0, float(np.radians(0.5)), 5.0)
+    ios: tuple | None = None
+    exposures: np.ndarray | None = None
+    mounts: np.ndarray | None = None
+    exposure_of_image: np.ndarray | None = None
+    camera_of_image: np.ndarray | None = None
+    rates: np.ndarray | None = None
+    target: np.ndarray | None = None
+
+    def __post_init__(self):
+        from .camera import as_points
+        if not isinstance(self.io, InteriorOrientation):
+            raise InputError(f"io must be an InteriorOrientation, got {type(self.io).__name__}")
+        check_order(self.order)
+        cams = np.asarray(self.cameras, dtype=float)
+        if cams.ndim != 2 or cams.shape[1] != 6 or not np.all(np.isfinite(cams)):
+            raise InputError(f"cameras: expected a finite (n, 6) array, got shape {cams.shape}")
+        pts = as_points(self.points, 3, "points") if np.size(self.points) else np.zeros((0, 3))
+        kind = np.asarray(self.kind)
+        if kind.shape != (len(pts),):
+            raise InputError(f"kind: expected {len(pts)} point kinds, got shape {kind.shape}")
+        for k in np.unique(kind):
+            PointKind(int(k))
+        if not isinstance(self.observations, Observations):
+            raise InputError("observations must be photolib.synthetic.Observations")
+        o = self.observations
+        if len(o) and (o.image.max() >= len(cams) or o.point.max() >= len(pts)):
+            raise InputError("observations refer to images or points the block does not have")
+        object.__setattr__(self, "cameras", cams)
+        object.__setattr__(self, "points", pts)
+        object.__setattr__(self, "kind", kind)
+        if self.image_labels is None:
+            object.__setattr__(self, "image_labels", tuple(str(i) for i in range(len(cams))))
+        if self.point_labels is None:
+            object.__setattr__(self, "point_labels", tuple(range(len(pts))))
+        if self.gnss is not None and np.shape(self.gnss) != (len(cams), 3):
+            raise InputError(f"gnss: expected ({len(cams)}, 3), got {np.shape(self.gnss)}")
+
+    # --- summary ---------------------------------------------------------------------------------
+    def __repr__(self) -> str:
+        counts = ", ".join(f"{int(np.sum(self.kind == k))} {k.name.lower()}" for k in PointKind
+                           if np.any(self.kind == k))
+        head = f"'{self.name}': " if self.name else ""
+        extra = []
+        if self.ios is not None:
+            extra.append(f"rig of {len(self.ios)} cameras, {len(self.exposures)} exposures")
+        if self.rates is not None:
+            extra.append("rolling shutter")
+        if self.gnss is not None:
+            extra.append(f"GNSS centres σ = {self.gnss_sigma * 100:g} cm")
+        if self.control_sigma is not None:
+            extra.append(f"weighted control σ = {self.control_sigma * 100:g} cm")
+        return (f"Block({head}{self.n_images} images, {len(self.points)} points ({counts}), "
+                f"{len(self.observations)} measurements, σ = {self.sigma * 1000:g} µm, order {self.order}"
+                + "".join(f"; {e}" for e in extra) + ")")
+
+    # --- views -----------------------------------------------------------------------------------
+    @property
+    def n_images(self) -> int:
+        """Number of images n."""
+        return self.cameras.shape[0]
+
+    @property
+    def block(self) -> "Block":
+        """The block itself (the former wrapper classes had a ``block`` attribute)."""
+        return self
 
     @property
     def control(self) -> np.ndarray:
+        """Indices of the control points."""
         return np.flatnonzero(self.kind == CONTROL)
 
     @property
     def check(self) -> np.ndarray:
+        """Indices of the check points."""
         return np.flatnonzero(self.kind == CHECK)
 
     @property
-    def n_images(self) -> int:
-        return self.cameras.shape[0]
+    def unknown_points(self) -> np.ndarray:
+        """Indices of the points that are unknowns (all of them when control is weighted)."""
+        if self.control_sigma is not None:
+            return np.arange(len(self.points))
+        return np.flatnonzero(self.kind != CONTROL)
 
-    def start_values(self, seed: int = 1, centre_sigma: float = 5.0, angle_sigma: float = np.radians(0.5),
-                     point_sigma: float = 5.0):
+    @property
+    def visibility(self) -> np.ndarray:
+        """(k, n) bool: point j is measured on image i."""
+        vis = np.zeros((len(self.points), self.n_images), bool)
+        vis[self.observations.point, self.observations.image] = True
+        return vis
+
+    @property
+    def image_cameras(self) -> np.ndarray:
+        """True EO of every image ((3.8.5)/(3.8.8) for a rig): the same as ``cameras``."""
+        return self.cameras
+
+    @property
+    def sigma0(self) -> float:
+        """Unit-weight σ₀ of (3.5.7): the image noise σ, or 0.005 mm for a noise-free block."""
+        return self.sigma if self.sigma > 0 else 0.005
+
+    def measurements(self, image: int):
+        """(labels, xy) of the points measured on ``image``, in point order."""
+        if not 0 <= int(image) < self.n_images:
+            raise InputError(f"no image {image} in a block of {self.n_images}")
+        sel = np.flatnonzero(self.observations.image == int(image))
+        sel = sel[np.argsort(self.observations.point[sel], kind="stable")]
+        return np.asarray(self.point_labels)[self.observations.point[sel]], self.observations.xy[sel]
+
+    def truth(self, ids) -> np.ndarray:
+        """True object coordinates of point labels and centre ids ("S<k>")."""
+        index = {p: i for i, p in enumerate(self.point_labels)}
+        out = []
+        for p in ids:
+            if isinstance(p, str) and p.startswith("S") and p[1:].isdigit():
+                out.append(self.cameras[int(p[1:]), :3])
+            elif p in index:
+                out.append(self.points[index[p]])
+            else:
+                raise InputError(f"the block has no point {p!r}")
+        return np.array(out).reshape(-1, 3)
+
+    def images_of_strip(self, s: int) -> np.ndarray:
+        """Images of strip ``s`` in flight order."""
+        if self.strip is None:
+            raise InputError("the block has no strips")
+        sel = self.strip == s
+        order = np.argsort(self.column[sel]) if self.column is not None else np.arange(sel.sum())
+        return np.flatnonzero(sel)[order]
+
+    def point_at(self, column: float, row: float):
+        """Label of the point at grid position (column, row) of a regular layout."""
+        if self.grid_position is None:
+            raise InputError("the block has no grid positions")
+        hit = np.flatnonzero(np.all(np.isclose(self.grid_position, [column, row]), axis=1))
+        if hit.size != 1:
+            raise InputError(f"no point at grid position ({column}, {row})")
+        return self.point_labels[hit[0]]
+
+    # --- simulation helpers ----------------------------------------------------------------------
+    def control_values(self) -> dict:
+        """{point index: measured (X, Y, Z)}: the truth (fixed control) or truth + seeded noise."""
+        if self.control_sigma is None:
+            return {int(i): self.points[i].copy() for i in self.control}
+        rng = np.random.default_rng(self.noise_seed)
+        noise = rng.normal(0.0, self.control_sigma, (self.control.size, 3))
+        return {int(i): self.points[i] + e for i, e in zip(self.control, noise)}
+
+    def start_values(self, seed: int = 1, centre_sigma: float | None = None, angle_sigma: float | None = None,
+                     point_sigma: float | None = None):
         """Seeded approximations: the truth perturbed by Gaussian errors (m, rad, m).
 
-        Control points keep their true coordinates (they are known). Returns ``(cameras0, points0)``.
+        Control points start at their measured values (:meth:`control_values`). The spreads
+        default to ``start_sigma``. Returns ``(cameras0, points0)``.
         """
+        cs, as_, ps = (d if v is None else v for v, d in zip((centre_sigma, angle_sigma, point_sigma),
+                                                              self.start_sigma))
         rng = np.random.default_rng(seed)
         cams = self.cameras.copy()
-        cams[:, :3] += rng.normal(0.0, centre_sigma, (self.n_images, 3))
-        cams[:, 3:] += rng.normal(0.0, angle_sigma, (self.n_images, 3))
-        pts = self.points + rng.normal(0.0, point_sigma, self.points.shape)
-        pts[self.control] = self.points[self.control]
+        cams[:, :3] += rng.normal(0.0, cs, (self.n_images, 3))
+        cams[:, 3:] += rng.normal(0.0, as_, (self.n_images, 3))
+        pts = self.points + rng.normal(0.0, ps, self.points.shape)
+        for i, xyz in self.control_values().items():
+            pts[i] = xyz
         return cams, pts
+
+    def with_noise(self, seed: int) -> "Block":
+        """The same geometry with a new seeded realisation of the image noise, the GNSS centres and
+        the (weighted) control coordinates."""
+        if self.xy_true is None:
+            raise InputError("the block keeps no noise-free measurements")
+        rng = np.random.default_rng(seed)
+        o = self.observations
+        obs = Observations(o.image, o.point, self.xy_true + rng.normal(0.0, self.sigma, self.xy_true.shape))
+        gnss = None if self.gnss is None else self.cameras[:, :3] + rng.normal(0.0, self.gnss_sigma, (self.n_images, 3))
+        return replace(self, observations=obs, gnss=gnss, noise_seed=int(rng.integers(2**31)))
+
+    def adjust(self, seed: int = 1, **kwargs):
+        """Adjust the block by :func:`photolib.bundle.bundle_adjustment` from seeded start values.
+
+        Control is held fixed (3.5.3) or weighted (3.5.17) as the block says; GNSS centres (3.5.18)
+        are used when the block has them. ``kwargs`` go to ``bundle_adjustment``.
+        """
+        from .bundle import bundle_adjustment
+        cams0, pts0 = self.start_values(seed)
+        args = dict(control=self.control_values(), control_sigma=self.control_sigma, sigma_image=self.sigma0,
+                    order=self.order, covariance=True)
+        if self.gnss is not None:
+            args.update(gnss=self.gnss, gnss_sigma=self.gnss_sigma)
+        args.update(kwargs)
+        return bundle_adjustment(self.observations, cams0, pts0, self.io, **args)
 
 
 def terrain_height(X, Y, mean: float = 150.0, relief: float = 30.0, wavelength: float = 3000.0):
-    """A smooth synthetic terrain: mean height plus two crossing sine waves of amplitude ``relief``/2."""
-    X, Y = np.asarray(X, dtype=float), np.asarray(Y, dtype=float)
-    k = 2 * np.pi / wavelength
+    """A smooth synthetic terrain: mean height plus two crossing sine waves of amplitude ``relief``/2.
+
+    Parameters
+    ----------
+    X, Y : array_like
+        Object coordinates, m (broadcast against each other).
+    mean, relief, wavelength : float
+        Mean height, amplitude scale and wavelength of the waves, m.
+
+    Returns
+    -------
+    ndarray
+        Heights Z, m.
+
+    Raises
+    ------
+    InputError
+        NaN/inf coordinates or parameters, a non-positive wavelength.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5 (the terrain of the simulated blocks; not a formula of the book).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import terrain_height
+    >>> float(terrain_height(0.0, 0.0))
+    150.0
+    """
+    try:
+        X, Y = np.asarray(X, dtype=float), np.asarray(Y, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError("X, Y must be numbers") from None
+    if not (np.all(np.isfinite(X)) and np.all(np.isfinite(Y))):
+        raise InputError("X, Y contain NaN or inf")
+    mean, relief = _finite(mean, "mean"), _finite(relief, "relief")
+    k = 2 * np.pi / _finite(wavelength, "wavelength", positive=True)
     return mean + 0.5 * relief * (np.sin(k * X) * np.cos(0.7 * k * Y) + np.sin(0.45 * k * (X + Y)))
 
 
@@ -95,7 +649,7 @@ def aerial_block(n_strips: int = 2, images_per_strip: int = 5, *, f: float = 100
                  angle_sigma: float = np.radians(1.0), height_sigma: float = 5.0,
                  control: str | np.ndarray = "perimeter", control_interval: int = 4, n_check: int = 10,
                  order: str = "kaw", seed: int = 0, io: InteriorOrientation | None = None,
-                 strip_heights=None) -> SyntheticBlock:
+                 strip_heights=None) -> Block:
     """Simulate a block of vertical aerial images over smooth terrain.
 
     Parameters
@@ -121,6 +675,8 @@ def aerial_block(n_strips: int = 2, images_per_strip: int = 5, *, f: float = 100
         ``control_interval`` bases along the first and last strip and at both ends of every
         second strip (the usual aerial-triangulation scheme); ``"corners"`` only the four corners
         and the block centre (the "envelope" of §3.5).
+    control_interval : int
+        Spacing of the perimeter control, in bases.
     n_check : int
         Tie points (seen in ≥ 3 images) turned into check points.
     order : {"kaw", "wak"}
@@ -137,29 +693,59 @@ def aerial_block(n_strips: int = 2, images_per_strip: int = 5, *, f: float = 100
 
     Returns
     -------
-    SyntheticBlock
+    Block
+        With ``strip``, ``column``, ``frame_size``, ``footprint``, ``base`` and ``strip_spacing``.
+
+    Raises
+    ------
+    InputError
+        Fewer than one strip of two images, overlaps outside (0, 1), NaN/inf or non-positive sizes,
+        a negative σ, an unknown control layout or rotation order.
+
+    References
+    ----------
+    Chibunichev (2022), §3.1 (layout), §3.5 (collinearity (3.5.1), fig. 3.13: 60 %/30 % overlap),
+    §3.6 (distortion (1.2.2)/(3.6.2)).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import aerial_block, CHECK
+    >>> blk = aerial_block(2, 4, points_per_image=12, n_check=3, seed=3)
+    >>> blk.n_images, blk.base, blk.strip_spacing, int((blk.kind == CHECK).sum())
+    (8, 400.0, 700.0, 3)
     """
     check_order(order)
-    if n_strips < 1 or images_per_strip < 2:
+    if _count(n_strips, "n_strips", 1) < 1 or _count(images_per_strip, "images_per_strip", 0) < 2:
         raise InputError("a block needs at least one strip of two images")
-    if not (0 < forward_overlap < 1 and 0 <= side_overlap < 1):
+    if not (0 < _finite(forward_overlap, "forward_overlap") < 1 and 0 <= _finite(side_overlap, "side_overlap") < 1):
         raise InputError("overlaps must be fractions in (0, 1)")
+    sigma = _finite(sigma, "sigma", nonnegative=True)
+    points_per_image = _finite(points_per_image, "points_per_image", positive=True)
+    relief = _finite(relief, "relief")
+    angle_sigma = _finite(angle_sigma, "angle_sigma", nonnegative=True)
+    height_sigma = _finite(height_sigma, "height_sigma", nonnegative=True)
+    n_check = _count(n_check, "n_check", 0)
     rng = np.random.default_rng(seed)
+    if io is not None and not isinstance(io, InteriorOrientation):
+        raise InputError(f"io must be an InteriorOrientation, got {type(io).__name__}")
     camera = io if io is not None else InteriorOrientation(f=f)
     io = InteriorOrientation(f=camera.f, x0=camera.x0, y0=camera.y0)    # ideal projection
     f = camera.f
-    heights = np.full(n_strips, float(flying_height)) if strip_heights is None else \
-        np.asarray(strip_heights, dtype=float)
-    if heights.shape != (n_strips,) or np.any(~(heights > 0)):
+    if strip_heights is None:
+        heights = np.full(n_strips, _finite(flying_height, "flying_height", positive=True))
+    else:
+        try:
+            heights = np.asarray(strip_heights, dtype=float)
+        except (TypeError, ValueError):
+            raise InputError("strip_heights must be numbers") from None
+    if heights.shape != (n_strips,) or np.any(~(heights > 0)) or not np.all(np.isfinite(heights)):
         raise InputError(f"strip_heights: give {n_strips} positive flying heights")
-    footprint = frame_size * flying_height / f
-    base = (1 - forward_overlap) * footprint
-    spacing = (1 - side_overlap) * footprint
+    lay = strip_layout(n_strips, images_per_strip, f=f, frame_size=frame_size, flying_height=flying_height,
+                       forward_overlap=forward_overlap, side_overlap=side_overlap)
+    footprint, base, spacing, strip, along = lay
     mean_height = 150.0
 
     # projection centres and angles
-    strip = np.repeat(np.arange(n_strips), images_per_strip)
-    along = np.tile(np.arange(images_per_strip), n_strips)
     n = strip.size
     cameras = np.empty((n, 6))
     cameras[:, 0] = along * base + rng.normal(0, 0.02 * base, n)
@@ -182,7 +768,7 @@ def aerial_block(n_strips: int = 2, images_per_strip: int = 5, *, f: float = 100
             ctrl = [(x, y) for x in xs_end for y in ys] + [(xs_end[1] / 2, ys[1] / 2)]
         elif control == "perimeter":
             ctrl = []
-            step = max(1, control_interval)
+            step = max(1, _count(control_interval, "control_interval", 1))
             cols = sorted(set(list(range(0, images_per_strip, step)) + [images_per_strip - 1]))
             edge_strips = sorted({0, n_strips - 1})
             for s in edge_strips:
@@ -198,12 +784,15 @@ def aerial_block(n_strips: int = 2, images_per_strip: int = 5, *, f: float = 100
             raise InputError(f"unknown control layout {control!r}; use 'perimeter', 'corners' or an array")
         ctrl_xy = np.array(ctrl, dtype=float)
     else:
-        ctrl_xy = np.asarray(control, dtype=float)
-        if ctrl_xy.ndim != 2 or ctrl_xy.shape[1] != 2:
-            raise InputError("control must be a layout name or an (c, 2) array of X, Y")
+        try:
+            ctrl_xy = np.asarray(control, dtype=float)
+        except (TypeError, ValueError):
+            raise InputError("control must be a layout name or an (c, 2) array of X, Y") from None
+        if ctrl_xy.ndim != 2 or ctrl_xy.shape[1] != 2 or not np.all(np.isfinite(ctrl_xy)):
+            raise InputError("control must be a layout name or a finite (c, 2) array of X, Y")
     all_xy = np.vstack([tie_xy, ctrl_xy])
     points = np.column_stack([all_xy, terrain_height(all_xy[:, 0], all_xy[:, 1], mean_height, relief)])
-    kind = np.concatenate([np.full(n_tie, TIE), np.full(len(ctrl_xy), CONTROL)])
+    kind = np.concatenate([np.full(n_tie, TIE), np.full(len(ctrl_xy), CONTROL)]).astype(int)
 
     # which images see which points: project every point near an image into it
     half = frame_size / 2 * 0.98
@@ -237,39 +826,170 @@ def aerial_block(n_strips: int = 2, images_per_strip: int = 5, *, f: float = 100
         from .camera import apply_distortion
         xy_true = apply_distortion(xy_true, camera)
     xy = xy_true + rng.normal(0.0, sigma, xy_true.shape) if sigma > 0 else xy_true.copy()
-    return SyntheticBlock(io=camera, order=order, cameras=cameras, points=points, kind=kind,
-                          observations=Observations(image_idx, point_idx, xy), xy_true=xy_true, sigma=float(sigma),
-                          strip=strip, frame_size=float(frame_size), base=float(base), strip_spacing=float(spacing))
+    return Block(io=camera, order=order, cameras=cameras, points=points, kind=kind,
+                 observations=Observations(image_idx, point_idx, xy), xy_true=xy_true, sigma=float(sigma),
+                 strip=strip, column=along, frame_size=float(frame_size), footprint=float(footprint),
+                 base=float(base), strip_spacing=float(spacing))
+
+
+def _relative_mount(reference, other, order):
+    """Mounting elements (B, ω′, α′, κ′) that carry the reference EO to ``other`` ((3.8.5), (3.8.8) inverted)."""
+    from .rotation import rotation_angles, rotation_matrix
+    A1 = rotation_matrix(*reference[3:], order)
+    A2 = rotation_matrix(*other[3:], order)
+    return np.concatenate([A1.T @ (other[:3] - reference[:3]), rotation_angles(A1.T @ A2, order)])
+
+
+def footprint_block(centres_xy, points_xy, kind, *, f: float = 100.0, frame_size: float = 125.0,
+                    flying_height: float = 1000.0, sigma: float = 0.005, seed: int = 0, order: str = "kaw",
+                    control_sigma: float | None = None, gnss_sigma: float | None = None, name: str = "",
+                    image_labels=None, point_labels=None, grid=None, at_principal=None,
+                    angle_sigma: float = np.radians(1.0), relief: float = 15.0, camera_of_image=None,
+                    exposure_of_image=None, base: float = _NAN, strip_spacing: float = _NAN,
+                    start_sigma=(10.0, float(np.radians(1.0)), 10.0)) -> Block:
+    """A block of near-vertical images whose points are measured where they lie inside a footprint.
+
+    The projection centres are at ``centres_xy`` and height ``flying_height`` (seeded spread
+    5 m), the angles are seeded (σ = ``angle_sigma``), the terrain heights uniform in 5 … 5 +
+    ``relief`` m. A point is measured on every image whose square footprint L = frame · H / f
+    contains it strictly (:func:`footprint_visibility`); observations are ordered image by image
+    (fig. 3.11) and projected by the collinearity equations (3.5.1).
+
+    Parameters
+    ----------
+    centres_xy : (n, 2) array
+        Nadirs X_S, Y_S of the images, m.
+    points_xy : (k, 2) array
+        X, Y of the points, m.
+    kind : (k,) sequence of PointKind
+        TIE, CONTROL or CHECK of every point.
+    f, frame_size, flying_height : float
+        Focal length and format (mm), flying height (m).
+    sigma : float
+        Image noise σ, mm (0: exact).
+    seed : int
+        Seed of the whole simulation.
+    order : {"kaw", "wak"}
+        Rotation order.
+    control_sigma : float, optional
+        None: control held fixed (3.5.3); else weighted (3.5.17), σ in m.
+    gnss_sigma : float, optional
+        If given, every projection centre is measured by GNSS with this σ (3.5.18), m.
+    name, image_labels, point_labels, grid
+        Stored in the block (labels default to P1, P2, … and 1, 2, …).
+    at_principal : dict {point: image}, optional
+        Points placed where the optical axis of that image meets the terrain (the principal
+        point, "-ф-" in the figures), not exactly below S where some derivatives vanish.
+    angle_sigma, relief : float
+        Spread of the true angles (rad) and of the terrain heights (m).
+    camera_of_image, exposure_of_image : (n,) int arrays, optional
+        The images are the exposures of a rig (§3.8): the mounting of camera c is that of the first
+        exposure (from its seeded EO), and every other image of camera c follows from its exposure's
+        camera-0 image by (3.8.5)/(3.8.8).
+    base, strip_spacing : float
+        Stored in the block (m).
+    start_sigma : (3,) tuple
+        Default spread of :meth:`Block.start_values`.
+
+    Returns
+    -------
+    Block
+
+    Raises
+    ------
+    InputError
+        NaN/inf or wrong shapes, a negative σ, a point that projects outside the frame, a rig
+        without a reference camera in every exposure.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, figs. 3.10, 3.11, 3.13; §3.8 ((3.8.5), (3.8.8), fig. 3.18).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import footprint_block, TIE, CONTROL
+    >>> blk = footprint_block([[0, 0], [500, 0]], [[0, 0], [500, 0], [250, 300]], [TIE, TIE, CONTROL])
+    >>> blk.visibility.sum(axis=0).tolist(), len(blk.observations)
+    ([3, 3], 6)
+    """
+    from .camera import as_points
+    from .rotation import rotation_matrix
+    check_order(order)
+    sigma = _finite(sigma, "sigma", nonnegative=True)
+    f = _finite(f, "f", positive=True)
+    frame_size = _finite(frame_size, "frame_size", positive=True)
+    flying_height = _finite(flying_height, "flying_height", positive=True)
+    angle_sigma = _finite(angle_sigma, "angle_sigma", nonnegative=True)
+    relief = _finite(relief, "relief", nonnegative=True)
+    if control_sigma is not None:
+        control_sigma = _finite(control_sigma, "control_sigma", positive=True)
+    if gnss_sigma is not None:
+        gnss_sigma = _finite(gnss_sigma, "gnss_sigma", nonnegative=True)
+    centres_xy = as_points(centres_xy, 2, "centres_xy")
+    points_xy = as_points(points_xy, 2, "points_xy").copy()
+    kind = np.array([int(PointKind(int(k))) for k in np.asarray(kind).ravel()], dtype=int)
+    if kind.shape != (len(points_xy),):
+        raise InputError(f"kind: expected {len(points_xy)} point kinds, got {kind.shape[0]}")
+    rng = np.random.default_rng(seed)
+    io = InteriorOrientation(f=f)
+    footprint = frame_size * flying_height / f
+    n = len(centres_xy)
+    cameras = np.empty((n, 6))
+    cameras[:, :2] = centres_xy
+    cameras[:, 2] = flying_height + rng.normal(0.0, 5.0, n)
+    cameras[:, 3:] = rng.normal(0.0, angle_sigma, (n, 3))
+    Z = 5.0 + relief * rng.uniform(0.0, 1.0, len(points_xy))
+    rig = {}
+    if camera_of_image is not None or exposure_of_image is not None:
+        c_img = np.asarray(camera_of_image, dtype=int).reshape(-1)
+        e_img = np.asarray(exposure_of_image, dtype=int).reshape(-1)
+        if c_img.shape != (n,) or e_img.shape != (n,) or c_img.min() < 0 or e_img.min() < 0:
+            raise InputError(f"camera_of_image and exposure_of_image: give {n} non-negative indices each")
+        ref = {int(e): i for i, (e, c) in enumerate(zip(e_img, c_img)) if c == 0}
+        if set(ref) != set(e_img.tolist()):
+            raise InputError("every exposure of the rig needs an image of the reference camera 0")
+        n_cam = int(c_img.max()) + 1
+        mounts = np.empty((n_cam - 1, 6))
+        for c in range(1, n_cam):
+            first = np.flatnonzero(c_img == c)
+            if first.size == 0:
+                raise InputError(f"rig camera {c} has no image")
+            i = int(first[0])
+            mounts[c - 1] = _relative_mount(cameras[ref[int(e_img[i])]], cameras[i], order)
+        from .bundle import rig_image_orientation
+        for i in np.flatnonzero(c_img > 0):
+            cameras[i] = rig_image_orientation(cameras[ref[int(e_img[i])]], mounts[c_img[i] - 1], order)
+        rig = dict(ios=(io,) * n_cam, exposures=cameras[[ref[e] for e in sorted(ref)]].copy(), mounts=mounts,
+                   exposure_of_image=e_img, camera_of_image=c_img)
+    for j, i in (at_principal or {}).items():
+        axis = rotation_matrix(*cameras[i, 3:], order) @ np.array([0.0, 0.0, -1.0])
+        points_xy[j] = cameras[i, :2] + (Z[j] - cameras[i, 2]) / axis[2] * axis[:2]
+    vis = footprint_visibility(points_xy, centres_xy, footprint)
+    points = np.column_stack([points_xy, Z])
+    point_idx, image_idx = np.nonzero(vis)
+    order_obs = np.lexsort((point_idx, image_idx))                    # image by image, as in fig. 3.11
+    image_idx, point_idx = image_idx[order_obs], point_idx[order_obs]
+    xy_true, z_star = project_to_images(cameras, image_idx, points[point_idx], io, order)
+    if np.any(z_star >= 0):
+        raise InputError(f"{name or 'block'}: a point is not in front of its image")
+    if np.any(np.abs(xy_true) >= frame_size / 2):
+        raise InputError(f"{name or 'block'}: a projected point falls outside the {frame_size:g} mm frame; "
+                         "reduce the tilts")
+    xy = xy_true + rng.normal(0.0, sigma, xy_true.shape) if sigma > 0 else xy_true.copy()
+    gnss = None
+    if gnss_sigma is not None:
+        gnss = cameras[:, :3] + rng.normal(0.0, gnss_sigma, (n, 3))
+    image_labels = tuple(image_labels) if image_labels is not None else tuple(f"P{i + 1}" for i in range(n))
+    point_labels = tuple(point_labels) if point_labels is not None else tuple(str(j + 1) for j in range(len(points)))
+    return Block(io=io, order=order, cameras=cameras, points=points, kind=kind,
+                 observations=Observations(image_idx, point_idx, xy), xy_true=xy_true, sigma=float(sigma),
+                 frame_size=frame_size, footprint=footprint, base=float(base), strip_spacing=float(strip_spacing),
+                 name=name, image_labels=image_labels, point_labels=point_labels, grid=grid,
+                 control_sigma=control_sigma, gnss=gnss, gnss_sigma=_NAN if gnss_sigma is None else float(gnss_sigma),
+                 noise_seed=int(seed) + 101, start_sigma=tuple(start_sigma), **rig)
 
 
 # --- Chapter 3, §3.8–§3.9: rigs, rolling shutter, corridors ----------------------------------------
-@dataclass(frozen=True)
-class RigBlock:
-    """A simulated multi-camera block (§3.8): reference EO per exposure, constant mounting elements."""
-
-    ios: tuple                     # InteriorOrientation per camera
-    order: str
-    exposures: np.ndarray          # (n, 6) true EO of the reference camera (camera 0)
-    mounts: np.ndarray             # (n_s − 1, 6) true B_X, B_Y, B_Z, ω′, α′, κ′
-    points: np.ndarray             # (k, 3)
-    kind: np.ndarray               # (k,) TIE / CONTROL / CHECK
-    exposure_of_image: np.ndarray  # (n_images,)
-    camera_of_image: np.ndarray    # (n_images,)
-    observations: Observations
-    sigma: float
-
-    @property
-    def control(self) -> np.ndarray:
-        return np.flatnonzero(self.kind == CONTROL)
-
-    @property
-    def image_cameras(self) -> np.ndarray:
-        """True EO of every image (3.8.5)/(3.8.8)."""
-        from .bundle import rig_image_orientation
-        mounts = np.vstack([np.zeros((1, 6)), self.mounts])
-        return rig_image_orientation(self.exposures[self.exposure_of_image], mounts[self.camera_of_image], self.order)
-
-
 def _observe(cams, points, io_of_image, frame_half, rng, sigma, order):
     """Project every point into every image (ideal, no distortion), keep those inside the frame."""
     image_idx, point_idx, xy_all = [], [], []
@@ -282,65 +1002,72 @@ def _observe(cams, points, io_of_image, frame_half, rng, sigma, order):
         xy_all.append(xy[inside])
     image_idx, point_idx, xy = np.concatenate(image_idx), np.concatenate(point_idx), np.vstack(xy_all)
     noisy = xy + rng.normal(0.0, sigma, xy.shape) if sigma > 0 else xy.copy()
-    return Observations(image_idx, point_idx, noisy)
-
-
-def fig310_block(rig: bool = False, sigma: float = 0.005, seed: int = 0, order: str = "kaw"):
-    """The block of fig. 3.10 (two strips × one stereopair) — layout reconstructed from the text.
-
-    Images P1, P2 (strip 1) and P3, P4 (strip 2), f = 100 mm, H ≈ 1000 m, base 500 m; tie points
-    1, 2, 5, 6 at the principal points, seen in all four images; control points 3, 4 (seen in
-    P1, P2) and 7, 8 (seen in P3, P4) — six points per image, 48 correction equations.
-    With ``rig=True`` P1/P2 and P3/P4 are two exposures of a stereo camera (§3.8, fig. 3.18): P2
-    and P4 follow from P1 and P3 by the same mounting elements (base 500 m along the x axis of
-    the reference camera, as in the book's formal example).
-    Returns a :class:`RigBlock` (camera 0 = P1, P3; camera 1 = P2, P4); points are numbered
-    1…8 in the book and 0…7 here.
-    """
-    rng = np.random.default_rng(seed)
-    deg = np.pi / 180
-    io = InteriorOrientation(f=100.0)
-    points = np.array([[1000, 1000, 12.0], [1500, 1000, 15.0], [1000, 1250, 20.0], [1500, 1250, 5.0],
-                       [1000, 500, 8.0], [1500, 500, 10.0], [1000, 250, 14.0], [1500, 250, 9.0]])
-    kind = np.array([TIE, TIE, CONTROL, CONTROL, TIE, TIE, CONTROL, CONTROL])
-    exposures = np.array([[1000, 1000, 1000, 0.5 * deg, 1.0 * deg, 0.3 * deg],
-                          [1000, 500, 998, 0.2 * deg, -0.6 * deg, -0.4 * deg]])
-    mounts = np.array([[500.0, 3.0, 2.0, -0.9 * deg, -0.2 * deg, 0.2 * deg]])
-    from .bundle import rig_image_orientation
-    cams = np.vstack([exposures[0], rig_image_orientation(exposures[0], mounts[0], order),
-                      exposures[1], rig_image_orientation(exposures[1], mounts[0], order)])
-    if not rig:
-        cams[1] += [0.0, 0.0, 2.0, -0.9 * deg, -0.2 * deg, 0.5 * deg]    # independent EO for the classic block
-        cams[3] += [0.0, 0.0, 3.0, 0.5 * deg, 0.3 * deg, 0.6 * deg]
-    visible = {0: [0, 1, 2, 3, 4, 5], 1: [0, 1, 2, 3, 4, 5], 2: [0, 1, 4, 5, 6, 7], 3: [0, 1, 4, 5, 6, 7]}
-    image = np.concatenate([np.full(6, j) for j in range(4)])
-    point = np.concatenate([visible[j] for j in range(4)])
-    xy, _ = project_to_images(cams, image, points[point], io, order)
-    xy = xy + rng.normal(0.0, sigma, xy.shape) if sigma > 0 else xy
-    return RigBlock(ios=(io, io), order=order, exposures=exposures if rig else cams[[0, 2]],
-                    mounts=mounts if rig else np.full((1, 6), np.nan), points=points, kind=kind,
-                    exposure_of_image=np.array([0, 0, 1, 1]), camera_of_image=np.array([0, 1, 0, 1]),
-                    observations=Observations(image, point, xy), sigma=float(sigma)), cams
+    return image_idx, point_idx, xy, noisy
 
 
 def rig_block(n_strips: int = 2, exposures_per_strip: int = 6, *, tilt_deg: float = 40.0, f: float = 50.0,
               frame_size: float = 36.0, flying_height: float = 600.0, forward_overlap: float = 0.7,
               side_overlap: float = 0.5, n_points: int = 600, relief: float = 40.0, sigma: float = 0.003,
-              n_control: int = 8, order: str = "kaw", seed: int = 0) -> RigBlock:
+              n_control: int = 8, order: str = "kaw", seed: int = 0) -> Block:
     """A Penta-like rig (§3.8, figs. 3.14, 3.16): a nadir camera and four obliques tilted ``tilt_deg``.
 
     The obliques look forward, back, right and left (tilts about the reference camera's y and x
     axes), with lever arms of 0.1–0.3 m. Points are scattered over the area all cameras see;
     ``n_control`` of them (spread over the block) are control. Seeded.
+
+    Parameters
+    ----------
+    n_strips, exposures_per_strip : int
+        Layout of the exposures (of the nadir camera).
+    tilt_deg : float
+        Tilt of the oblique cameras, degrees (this one parameter is in degrees, as its name says).
+    f, frame_size, flying_height, forward_overlap, side_overlap : float
+        Camera (mm), height (m) and overlaps of the nadir camera.
+    n_points, n_control : int
+        Points scattered, and how many of them are control.
+    relief, sigma : float
+        Terrain relief (m), image noise (mm).
+    order : {"kaw", "wak"}
+        Rotation order.
+    seed : int
+        Seed.
+
+    Returns
+    -------
+    Block
+        With ``ios``, ``exposures`` (n, 6), ``mounts`` (4, 6), ``exposure_of_image``,
+        ``camera_of_image``; ``cameras`` holds the EO of every image.
+
+    Raises
+    ------
+    InputError
+        Bad sizes or overlaps, NaN/inf, a negative σ, too few points.
+
+    References
+    ----------
+    Chibunichev (2022), §3.8, (3.8.1), (3.8.2), (3.8.5), (3.8.8), figs. 3.14, 3.16.
+
+    Examples
+    --------
+    >>> from photolib.synthetic import rig_block
+    >>> rb = rig_block(1, 2, n_points=150, n_control=4, seed=1)
+    >>> len(rb.ios), rb.exposures.shape, rb.mounts.shape, rb.n_images
+    (5, (2, 6), (4, 6), 10)
     """
     check_order(order)
+    _count(n_strips, "n_strips", 1)
+    _count(exposures_per_strip, "exposures_per_strip", 1)
+    n_points = _count(n_points, "n_points", 3)
+    n_control = _count(n_control, "n_control", 0)
+    sigma = _finite(sigma, "sigma", nonnegative=True)
+    tilt_deg = _finite(tilt_deg, "tilt_deg")
+    relief = _finite(relief, "relief")
     rng = np.random.default_rng(seed)
     deg = np.pi / 180
+    lay = strip_layout(n_strips, exposures_per_strip, f=f, frame_size=frame_size, flying_height=flying_height,
+                       forward_overlap=forward_overlap, side_overlap=side_overlap)
+    foot, base, spacing, strip, along = lay
     io = InteriorOrientation(f=f)
-    foot = frame_size * flying_height / f
-    base, spacing = (1 - forward_overlap) * foot, (1 - side_overlap) * foot
-    strip = np.repeat(np.arange(n_strips), exposures_per_strip)
-    along = np.tile(np.arange(exposures_per_strip), n_strips)
     n = strip.size
     exposures = np.column_stack([along * base + rng.normal(0, 2, n), -strip * spacing + rng.normal(0, 2, n),
                                  150 + flying_height + rng.normal(0, 3, n), rng.normal(0, 1.0 * deg, (n, 3))])
@@ -358,14 +1085,17 @@ def rig_block(n_strips: int = 2, exposures_per_strip: int = 6, *, tilt_deg: floa
     e_img = np.repeat(np.arange(n), n_cam)
     c_img = np.tile(np.arange(n_cam), n)
     cams = rig_image_orientation(exposures[e_img], np.vstack([np.zeros((1, 6)), mounts])[c_img], order)
-    obs = _observe(cams, points, [io] * cams.shape[0], frame_size / 2 * 0.98, rng, sigma, order)
-    count = np.bincount(obs.point, minlength=n_points)
+    image, point, xy_true, noisy = _observe(cams, points, [io] * cams.shape[0], frame_size / 2 * 0.98, rng, sigma,
+                                            order)
+    count = np.bincount(point, minlength=n_points)
     keep = count >= 2
+    if keep.sum() < 3:
+        raise InputError("fewer than 3 points are seen on two images; give more points or more overlap")
     new = np.cumsum(keep) - 1
-    sel = keep[obs.point]
-    obs = Observations(obs.image[sel], new[obs.point[sel]], obs.xy[sel])
+    sel = keep[point]
+    image, point, xy_true, noisy = image[sel], new[point[sel]], xy_true[sel], noisy[sel]
     points = points[keep]
-    kind = np.full(len(points), TIE)
+    kind = np.full(len(points), int(TIE))
     centre = np.array([(exposures_per_strip - 1) * base / 2, -(n_strips - 1) * spacing / 2])
     angle = np.arctan2(points[:, 1] - centre[1], points[:, 0] - centre[0])
     far = np.hypot(*(points[:, :2] - centre).T)
@@ -373,24 +1103,18 @@ def rig_block(n_strips: int = 2, exposures_per_strip: int = 6, *, tilt_deg: floa
     for sector in range(n_control):
         in_sector = np.flatnonzero(np.floor((angle + np.pi) / (2 * np.pi) * n_control) == sector)
         if in_sector.size:
-            chosen.append(in_sector[np.argmax(far[in_sector] * (np.bincount(obs.point, minlength=len(points))[in_sector] >= 3))])
+            chosen.append(in_sector[np.argmax(far[in_sector] * (np.bincount(point, minlength=len(points))[in_sector] >= 3))])
     kind[chosen] = CONTROL
-    return RigBlock(ios=tuple([io] * n_cam), order=order, exposures=exposures, mounts=mounts, points=points, kind=kind,
-                    exposure_of_image=e_img, camera_of_image=c_img, observations=obs, sigma=float(sigma))
-
-
-@dataclass(frozen=True)
-class RollingShutterBlock:
-    """A simulated UAV block with rolling-shutter images (§3.9)."""
-
-    block: SyntheticBlock          # geometry; ``block.cameras`` = EO at the line x = 0
-    rates: np.ndarray              # (n, 6) true k₁ … k₆ of (3.9.2)
-    observations: Observations     # rolling-shutter measurements
+    return Block(io=io, order=order, cameras=cams, points=points, kind=kind,
+                 observations=Observations(image, point, noisy), xy_true=xy_true, sigma=float(sigma),
+                 strip=strip[e_img], column=along[e_img], frame_size=float(frame_size), footprint=float(foot),
+                 base=float(base), strip_spacing=float(spacing), ios=tuple([io] * n_cam), exposures=exposures,
+                 mounts=mounts, exposure_of_image=e_img, camera_of_image=c_img)
 
 
 def rolling_shutter_block(n_strips: int = 2, images_per_strip: int = 5, *, speed: float = 10.0,
                           readout: float = 0.03, angular_rate_deg: float = 3.0, sigma: float = 0.0015,
-                          points_per_image: int = 60, model: str = "full", seed: int = 0) -> RollingShutterBlock:
+                          points_per_image: int = 60, model: str = "full", seed: int = 0) -> Block:
     """UAV block (f = 8.8 mm, 13.2 mm sensor, H = 100 m, 80/70 % overlap) shot with a rolling shutter.
 
     The readout runs along x and takes ``readout`` seconds for the whole sensor, while the UAV
@@ -398,7 +1122,49 @@ def rolling_shutter_block(n_strips: int = 2, images_per_strip: int = 5, *, speed
     (3.9.2) are these velocities times readout / sensor width (per mm of x). ``model="linear"``
     keeps the angles constant (k₄ = k₅ = k₆ = 0). Observations by
     :func:`photolib.bundle.rolling_shutter_project` plus Gaussian noise σ (mm).
+
+    Parameters
+    ----------
+    n_strips, images_per_strip : int
+        Block size.
+    speed, readout, angular_rate_deg : float
+        Flying speed (m/s), readout time (s), largest angular rate (degrees per second).
+    sigma : float
+        Image noise, mm.
+    points_per_image : int
+        Tie-point density.
+    model : {"full", "linear"}
+        Rates of all six EO elements, or of the centre only.
+    seed : int
+        Seed.
+
+    Returns
+    -------
+    Block
+        ``cameras`` = EO at the line x = 0, ``rates`` (n, 6), rolling-shutter ``observations``.
+
+    Raises
+    ------
+    InputError
+        An unknown model, NaN/inf or negative rates and σ, a bad block size.
+
+    References
+    ----------
+    Chibunichev (2022), §3.9, (3.9.1), (3.9.2).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import rolling_shutter_block
+    >>> rsb = rolling_shutter_block(1, 3, points_per_image=20, model="linear")
+    >>> rsb.rates.shape, bool((rsb.rates[:, 3:] == 0).all())
+    ((3, 6), True)
     """
+    if model not in ("full", "linear"):
+        raise InputError("model must be 'full' or 'linear'")
+    speed = _finite(speed, "speed")
+    readout = _finite(readout, "readout", nonnegative=True)
+    angular_rate_deg = _finite(angular_rate_deg, "angular_rate_deg")
+    sigma = _finite(sigma, "sigma", nonnegative=True)
     from .bundle import rolling_shutter_project
     blk = aerial_block(n_strips, images_per_strip, f=8.8, frame_size=13.2, flying_height=100.0, forward_overlap=0.8,
                        side_overlap=0.7, points_per_image=points_per_image, relief=15.0, sigma=0.0,
@@ -409,37 +1175,65 @@ def rolling_shutter_block(n_strips: int = 2, images_per_strip: int = 5, *, speed
     per_mm = readout / blk.frame_size
     rates = np.zeros((n, 6))
     heading = np.where(blk.strip % 2 == 0, 1.0, -1.0)
-    rates[:, 0] = heading * speed * per_mm + rng.normal(0, 0.1 * speed * per_mm, n)
-    rates[:, 1] = rng.normal(0, 0.1 * speed * per_mm, n)
-    rates[:, 2] = rng.normal(0, 0.05 * speed * per_mm, n)
+    rates[:, 0] = heading * speed * per_mm + rng.normal(0, 0.1 * abs(speed) * per_mm, n)
+    rates[:, 1] = rng.normal(0, 0.1 * abs(speed) * per_mm, n)
+    rates[:, 2] = rng.normal(0, 0.05 * abs(speed) * per_mm, n)
     if model == "full":
         rates[:, 3:] = rng.uniform(-1, 1, (n, 3)) * np.radians(angular_rate_deg) * per_mm
-    elif model != "linear":
-        raise InputError("model must be 'full' or 'linear'")
     o = blk.observations
-    xy = rolling_shutter_project(blk.cameras, rates, blk.points[o.point], blk.io, blk.order, image=o.image)
-    xy = xy + rng.normal(0.0, sigma, xy.shape) if sigma > 0 else xy
-    return RollingShutterBlock(block=blk, rates=rates, observations=Observations(o.image, o.point, xy))
-
-
-@dataclass(frozen=True)
-class CorridorBlock:
-    """A single-strip UAV corridor (§3.9, fig. 3.26) with GNSS centres and a vehicle-borne target."""
-
-    block: SyntheticBlock          # strip geometry; the target points are CONTROL, the road points CHECK
-    gnss: np.ndarray               # (n, 3) measured projection centres
-    target: np.ndarray             # (n,) index of the dynamic control point seen in image i (−1: none)
+    xy_true = rolling_shutter_project(blk.cameras, rates, blk.points[o.point], blk.io, blk.order, image=o.image)
+    xy = xy_true + rng.normal(0.0, sigma, xy_true.shape) if sigma > 0 else xy_true
+    return replace(blk, observations=Observations(o.image, o.point, xy), xy_true=xy_true, sigma=float(sigma),
+                   rates=rates)
 
 
 def corridor_strip(n_images: int = 16, *, wander: float = 0.5, gnss_sigma: float = 0.03, sigma: float = 0.002,
-                   points_per_image: int = 40, with_target: bool = True, seed: int = 0) -> CorridorBlock:
+                   points_per_image: int = 40, with_target: bool = True, seed: int = 0) -> Block:
     """A mapKITE-like corridor (§3.9, figs. 3.25/3.26): one UAV strip along a road, GNSS centres only.
 
     UAV with f = 8.8 mm, 13.2 mm sensor, H = 100 m, 80 % forward overlap. The projection centres
     lie almost on a line (lateral wander ``wander`` m), so GNSS centres alone leave the block
     free to roll about the flight line. With ``with_target`` a vehicle below the UAV carries a
     target whose position (GNSS/INS) is known at every exposure: a new control point in each image.
+
+    Parameters
+    ----------
+    n_images : int
+        Images in the strip (at least 2).
+    wander, gnss_sigma, sigma : float
+        Lateral scatter of the centres (m), GNSS accuracy (m), image noise (mm).
+    points_per_image : int
+        Tie-point density.
+    with_target : bool
+        Add the vehicle-borne target (CONTROL, one per image).
+    seed : int
+        Seed.
+
+    Returns
+    -------
+    Block
+        With ``gnss`` (n, 3), ``gnss_sigma`` and ``target`` (n,) (−1: none); road points are CHECK.
+
+    Raises
+    ------
+    InputError
+        NaN/inf or negative σ, fewer than two images.
+
+    References
+    ----------
+    Chibunichev (2022), §3.9, figs. 3.25, 3.26; GNSS centres (3.5.18).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import corridor_strip
+    >>> co = corridor_strip(6, points_per_image=20)
+    >>> co.gnss.shape, co.target.tolist()[:3]
+    ((6, 3), [...])
     """
+    n_images = _count(n_images, "n_images", 2)
+    wander = _finite(wander, "wander", nonnegative=True)
+    gnss_sigma = _finite(gnss_sigma, "gnss_sigma", nonnegative=True)
+    sigma = _finite(sigma, "sigma", nonnegative=True)
     blk = aerial_block(1, n_images, f=8.8, frame_size=13.2, flying_height=100.0, forward_overlap=0.8,
                        side_overlap=0.0, points_per_image=points_per_image, relief=8.0, sigma=0.0,
                        angle_sigma=np.radians(2.0), height_sigma=0.3, control=np.zeros((0, 2)), n_check=20,
@@ -458,14 +1252,186 @@ def corridor_strip(n_images: int = 16, *, wander: float = 0.5, gnss_sigma: float
         tz = terrain_height(tgt[:, 0], tgt[:, 1], 150.0, 8.0) + 1.8          # target on the vehicle roof
         target = len(pts) + np.arange(n_images)
         pts = np.vstack([pts, np.column_stack([tgt, tz])])
-        kind = np.concatenate([kind, np.full(n_images, CONTROL)])
+        kind = np.concatenate([kind, np.full(n_images, int(CONTROL))])
         t_xy, _ = project_to_images(cams, np.arange(n_images), pts[target], blk.io, blk.order)
         image = np.concatenate([image, np.arange(n_images)])
         point = np.concatenate([point, target])
         xy_true = np.vstack([xy_true, t_xy])
     xy = xy_true + rng.normal(0.0, sigma, xy_true.shape) if sigma > 0 else xy_true.copy()
     gnss = cams[:, :3] + rng.normal(0.0, gnss_sigma, (n_images, 3))
-    from dataclasses import replace
-    blk = replace(blk, cameras=cams, points=pts, kind=kind, observations=Observations(image, point, xy),
-                  xy_true=xy_true, sigma=float(sigma))
-    return CorridorBlock(block=blk, gnss=gnss, target=target)
+    return replace(blk, cameras=cams, points=pts, kind=kind, observations=Observations(image, point, xy),
+                   xy_true=xy_true, sigma=float(sigma), gnss=gnss, gnss_sigma=float(gnss_sigma), target=target,
+                   point_labels=tuple(range(len(pts))))
+
+
+# --- Chapter 2 / Chapter 4 / the GNSS appendix: one stereo pair ------------------------------------
+@dataclass(frozen=True)
+class StereoPair:
+    """A simulated stereo pair with known truth (§2.4–§2.12, §4.3–§4.4, the GNSS appendix).
+
+    Attributes
+    ----------
+    io : InteriorOrientation or None
+        The camera (None when a custom ``projector`` was used).
+    order : str
+        Rotation sequence of ``angles`` (for the default Chapter-1 projection).
+    centres : (2, 3) array
+        True projection centres S₁, S₂ (m).
+    angles : (2, 3) array
+        True angles of each image (rad), in the sequence ``order`` (or the projector's system).
+    points : (n, 3) array
+        Object points (m).
+    xy1, xy2 : (n, 2) arrays
+        Measured image coordinates (mm), with the noise ``sigma``.
+    xy1_true, xy2_true : (n, 2) arrays
+        Noise-free projections.
+    sigma : float
+        Standard deviation of the Gaussian image noise (mm).
+
+    References
+    ----------
+    Chibunichev (2022), §2.4, eq. (2.4.4); §1.4, eq. (1.4.12).
+
+    Examples
+    --------
+    >>> pair = stereo_pair(6, seed=0)
+    >>> pair.xy1.shape, pair.eo2.center
+    ((6, 2), array([ 400.,    0., 1000.]))
+    """
+
+    io: InteriorOrientation | None
+    order: str
+    centres: np.ndarray
+    angles: np.ndarray
+    points: np.ndarray
+    xy1: np.ndarray
+    xy2: np.ndarray
+    xy1_true: np.ndarray
+    xy2_true: np.ndarray
+    sigma: float
+
+    def _eo(self, i):
+        from .camera import ExteriorOrientation
+        return ExteriorOrientation(*map(float, self.centres[i]), *map(float, self.angles[i]), order=self.order)
+
+    @property
+    def eo1(self):
+        """Exterior orientation of image 1 (Chapter-1 conventions)."""
+        return self._eo(0)
+
+    @property
+    def eo2(self):
+        """Exterior orientation of image 2 (Chapter-1 conventions)."""
+        return self._eo(1)
+
+    def __repr__(self) -> str:
+        b = np.linalg.norm(self.centres[1] - self.centres[0])
+        return (f"StereoPair({len(self.points)} points, base {b:.1f} m, σ = {self.sigma * 1000:.1f} µm, "
+                f"order {self.order})")
+
+
+def stereo_pair(n_points: int = 12, *, seed: int = 0, rng=None, f: float = 100.0,
+                io: InteriorOrientation | None = None, order: str = "kaw",
+                centres=((0.0, 0.0, 1000.0), (400.0, 0.0, 1000.0)), angles=((0.0, 0.0, 0.0), (0.0, 0.0, 0.0)),
+                angle_spread=None, angle_spread_deg=None, box=((50.0, 350.0), (-250.0, 250.0)), ground_xy=None,
+                mean_height: float = 0.0, relief: float = 40.0, sigma: float = 0.0, projector=None) -> StereoPair:
+    """Simulate a stereo pair: two cameras, object points with relief, (noisy) image coordinates.
+
+    The one synthetic-pair generator of photolib: near-vertical aerial pairs (Chapters 2 and 4),
+    convergent terrestrial pairs (give ``centres`` and ``angles``, e.g. image 2 turned by the
+    convergence angle about the vertical) and the GNSS-centre pairs of the Dobrynin–Pimshina
+    method (with their own ``projector``). The random numbers are drawn in a fixed sequence —
+    the angle perturbations of image 1 then image 2 (only if a spread is given, even a zero one), X then Y of the
+    points (only without ``ground_xy``), their heights, the noise of image 1 then image 2 (only
+    for ``sigma`` > 0) — so a pair is a function of its arguments.
+
+    Parameters
+    ----------
+    n_points : int
+        Number of object points scattered uniformly over ``box`` (ignored with ``ground_xy``).
+    seed : int
+        Seed of the random generator (ignored when ``rng`` is given).
+    rng : numpy.random.Generator, optional
+        A generator to draw from instead of a fresh one.
+    f : float
+        Focal length (mm) of the default camera; ``io`` replaces it.
+    io : InteriorOrientation, optional
+        The camera (distortion is not simulated).
+    order : {"kaw", "wak"}
+        Rotation sequence of ``angles``.
+    centres : (2, 3) array_like
+        Projection centres S₁, S₂ (m); the base is their difference.
+    angles : (2, 3) array_like
+        Nominal angles of the images (rad).
+    angle_spread, angle_spread_deg : float or array of 3, optional
+        Half-width of uniform perturbations added to every angle, in radians or in degrees
+        (drawn in degrees, then converted); per angle if an array of 3. None (default): no
+        perturbation and no random numbers drawn for the angles.
+    box : ((x_lo, x_hi), (y_lo, y_hi))
+        Planimetric area of the object points (m).
+    ground_xy : (n, 2) array, optional
+        Fixed planimetric positions of the points instead of random ones.
+    mean_height, relief : float
+        Heights are ``mean_height`` + uniform(−relief, relief) (m).
+    sigma : float
+        Gaussian image noise (mm); 0 gives exact coordinates.
+    projector : callable, optional
+        ``projector(points, centre, angles) -> xy`` replacing the collinearity equations
+        (1.4.12) (e.g. the α–ω–χ system of the GNSS appendix).
+
+    Returns
+    -------
+    StereoPair
+
+    Raises
+    ------
+    InputError
+        Bad shapes, a negative σ or relief, NaN.
+    DegenerateGeometryError
+        A point behind a camera (from the projection).
+
+    References
+    ----------
+    Chibunichev (2022), §1.4, eq. (1.4.12); §2.4–§2.5; §4.4. Dobrynin & Pimshina, eqs. (3), (4).
+
+    Examples
+    --------
+    >>> p = stereo_pair(8, seed=1, sigma=0.005)
+    >>> p.points.shape, round(p.sigma, 3)
+    ((8, 3), 0.005)
+    """
+    from .single_image import project
+
+    check_order(order)
+    rng = np.random.default_rng(seed) if rng is None else rng
+    C = np.array(centres, dtype=float)
+    A = np.array(angles, dtype=float)
+    if C.shape != (2, 3) or A.shape != (2, 3) or not (np.all(np.isfinite(C)) and np.all(np.isfinite(A))):
+        raise InputError("centres and angles: expected finite (2, 3) arrays (one row per image)")
+    if not (np.isfinite(sigma) and sigma >= 0 and np.isfinite(relief) and relief >= 0):
+        raise InputError("sigma and relief must be finite and non-negative")
+    if angle_spread_deg is not None:
+        spread = np.broadcast_to(np.asarray(angle_spread_deg, dtype=float), (3,))
+        A = A + np.stack([np.radians(rng.uniform(-spread, spread)) for _ in range(2)])
+    elif angle_spread is not None:
+        spread = np.broadcast_to(np.asarray(angle_spread, dtype=float), (3,))
+        A = A + np.stack([rng.uniform(-spread, spread) for _ in range(2)])
+    if ground_xy is None:
+        (x_lo, x_hi), (y_lo, y_hi) = box
+        xy = np.column_stack([rng.uniform(x_lo, x_hi, n_points), rng.uniform(y_lo, y_hi, n_points)])
+    else:
+        xy = np.asarray(ground_xy, dtype=float)
+        if xy.ndim != 2 or xy.shape[1] != 2 or not np.all(np.isfinite(xy)):
+            raise InputError("ground_xy: expected a finite (n, 2) array")
+    points = np.column_stack([xy, mean_height + rng.uniform(-relief, relief, len(xy))])
+    if projector is None:
+        camera = InteriorOrientation(f) if io is None else io
+        from .camera import ExteriorOrientation
+        xy_true = [project(points, ExteriorOrientation(*C[i], *A[i], order=order), camera) for i in range(2)]
+    else:
+        camera = io
+        xy_true = [projector(points, C[i], A[i]) for i in range(2)]
+    xy_meas = list(xy_true)
+    if sigma:
+        xy_meas = [x + rng.normal(0, sigma, x.shape) for x in xy_true]
+    return StereoPair(camera, order, C, A, points, xy_meas[0], xy_meas[1], xy_true[0], xy_true[1], float(sigma))

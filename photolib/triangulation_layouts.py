@@ -1,322 +1,278 @@
-"""The book's bundle-block layouts, their counts and the §3.7 regulation checks — Chapter 3, §3.5, §3.7.
+"""Counts, correction equations and accuracy checks of bundle blocks — Chapter 3, §3.5, §3.7.
 
 §3.5 "Построение и уравнивание маршрутной и блочной фототриангуляции по методу связок" counts
-unknowns and correction equations for two small blocks whose drawings survive only partly in the
-OCR: fig. 3.10 (two strips of one stereopair each, 60 % forward and 60 % side overlap, four tie
-points, four XYZ control points held fixed) and fig. 3.13 (two strips of four images, control by
-five XYZ points and eight GNSS projection centres, the figure printing how many images see each
-point). This module rebuilds both as synthetic blocks *from footprint geometry* (vertical images
-with a square footprint L × L, forward base b, strip spacing s; a point is on an image if it lies
-strictly inside the footprint), so that
+unknowns and correction equations of a block and describes the structure of its correction and
+normal equations. This module holds those algorithms for any :class:`photolib.synthetic.Block`:
 
-* the per-point image counts and the counts m, k, c, s of (3.5.20)/(3.5.21) follow from the
-  geometry instead of being typed in (:func:`images_per_point`, :func:`block_counts`);
-* the correction equations (3.5.2)/(3.5.3)/(3.5.17)/(3.5.18)/(3.5.19) can be *built*, densely, in
-  the column order of fig. 3.11 (:func:`correction_equation_system`) and the normal matrix
-  N = AᵀPA of fig. 3.12 inspected (:func:`normal_matrix_structure`);
-* the blocks are adjusted by :func:`photolib.bundle.bundle_adjustment` with seeded noise
-  (:meth:`BookBlock.adjust`).
+* the counting formulas N = 6n + 3k (3.5.20) and M = 2m + 3c + 2i + l + 3s + 3j (3.5.21)
+  (:func:`bundle_unknowns`, :func:`bundle_equations`) and their inputs read off a block
+  (:func:`images_per_point`, :func:`block_counts`);
+* the correction equations (3.5.2)/(3.5.3)/(3.5.17)/(3.5.18)/(3.5.19) built densely in the
+  column order of fig. 3.11 (:func:`correction_equation_system`, :class:`BundleSystem`) and the
+  structure of N = AᵀPA of fig. 3.12 (:func:`normal_matrix_structure`);
+* accuracy of adjusted points against the truth (:func:`predicted_point_sigma` — m_j of (3.5.11)
+  with σ₀, :func:`check_point_accuracy`).
 
 §3.7 "Технология построения сетей фототриангуляции" quotes the Russian *Instruction on
-photogrammetric works*; its tolerance numbers are data in ``textbook/ch03.toml`` (example
-``3.7-tolerances``). :func:`evaluate_regulations` is **our helper, not the book's**: it compares
-an adjustment's control and check-point discrepancies with those tolerances (3.7.5)/(3.7.6), and
-:func:`free_strip_height_tolerance_um` evaluates the 3.7.2 height tolerance 15 µm·f/b.
+photogrammetric works*. :func:`evaluate_regulations` (**our helper, not the book's**) compares an
+adjustment's control and check-point discrepancies with the tolerances of 3.7.6;
+:func:`check_height_factor` and :func:`free_strip_height_tolerance_um` evaluate 3.7.6/3.7.7 and
+3.7.2. The tolerance numbers themselves are the caller's data (a mapping with the keys
+:data:`TOLERANCE_NAMES`); the book layer passes the values transcribed in ``textbook/ch03.toml``.
+The rebuilt blocks of figs. 3.10 and 3.13 are book content: ``photolib.book.ch03_layouts``.
 
 Units: image mm, object metres, angles radians.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
-from .bundle import BundleResult, bundle_adjustment, bundle_correction_equations
-from .camera import InteriorOrientation
+from .bundle import bundle_correction_equations
 from .errors import InputError
 from .lsq import block_equations_dense
-from .rotation import check_order, rotation_matrix
-from .single_image import project_to_images
-from .synthetic import CHECK, CONTROL, TIE, Observations
+from .synthetic import CONTROL, Block, footprint_visibility  # noqa: F401  (footprint_visibility: re-export)
 
-__all__ = ["BookBlock", "BundleSystem", "footprint_visibility", "fig_3_10_block", "fig_3_13_block",
-           "images_per_point", "block_counts", "bundle_unknowns", "bundle_equations",
+__all__ = ["bundle_unknowns", "bundle_equations", "images_per_point", "block_counts", "BundleSystem",
            "correction_equation_system", "normal_matrix_structure", "predicted_point_sigma",
-           "check_point_accuracy", "REGULATIONS_ID", "regulation_value", "check_height_factor",
-           "free_strip_height_tolerance_um", "evaluate_regulations", "Criterion"]
+           "check_point_accuracy", "TOLERANCE_NAMES", "Criterion", "check_height_factor",
+           "free_strip_height_tolerance_um", "evaluate_regulations"]
 
 EO_COLUMN_NAMES = ("X_S", "Y_S", "Z_S", "ω", "α", "κ")
 
 
+def _nonneg_int(what, value) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        if not (isinstance(value, (float, np.floating)) and float(value).is_integer()):
+            raise InputError(f"counts must be non-negative integers: {what} = {value!r}")
+    if value < 0:
+        raise InputError(f"counts must be non-negative: {what} = {value!r}")
+    return int(value)
+
+
+def _check_block(block):
+    if not isinstance(block, Block):
+        raise InputError(f"expected a photolib.synthetic.Block, got {type(block).__name__}")
+
+
 # --- counting formulas (3.5.20), (3.5.21) --------------------------------------------------------
 def bundle_unknowns(n: int, k: int) -> int:
-    """N = 6n + 3k (3.5.20): n images, k determined points (with weighted control: including it)."""
-    if n < 0 or k < 0:
-        raise InputError("counts must be non-negative")
-    return 6 * n + 3 * k
+    """Number of unknowns of the bundle method, N = 6n + 3k (3.5.20).
 
+    Parameters
+    ----------
+    n : int
+        Images (six exterior-orientation elements each).
+    k : int
+        Determined points (with weighted control (3.5.17): including the control points).
 
-def bundle_equations(m: int, c: int = 0, i: int = 0, l: int = 0, s: int = 0, j: int = 0) -> int:
-    """M = 2m + 3c + 2i + l + 3s + 3j (3.5.21).
+    Returns
+    -------
+    int
+        N.
 
-    m image measurements (points × images they are measured on), c XYZ control points, i
-    planimetric (XY) and l height control points with weighted observations (3.5.17), s GNSS
-    projection centres (3.5.18), j images with measured angles (3.5.19). (The book's legend calls
-    both the planimetric and the height count "i".)
+    Raises
+    ------
+    InputError
+        A negative or non-integer count.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eq. (3.5.20).
+
+    Examples
+    --------
+    >>> from photolib.triangulation_layouts import bundle_unknowns
+    >>> bundle_unknowns(4, 2)          # fig. 3.10: 4 images, tie points 1, 2, 5, 6 → 36 with k = 4
+    30
+    >>> bundle_unknowns(4, 4)
+    36
     """
-    if min(m, c, i, l, s, j) < 0:
-        raise InputError("counts must be non-negative")
-    return 2 * m + 3 * c + 2 * i + l + 3 * s + 3 * j
+    return 6 * _nonneg_int("n", n) + 3 * _nonneg_int("k", k)
 
 
-# --- layouts from footprint geometry -------------------------------------------------------------
-def footprint_visibility(points_xy, centres_xy, footprint: float) -> np.ndarray:
-    """(k, n) bool: point j lies strictly inside the square footprint of side ``footprint`` of image i.
+def bundle_equations(m: int, c: int = 0, i: int = 0, l: int = 0, s: int = 0, j: int = 0) -> int:  # noqa: E741
+    """Number of correction equations, M = 2m + 3c + 2i + l + 3s + 3j (3.5.21).
 
-    Vertical images: the footprint is centred on the nadir (X_S, Y_S). This is the counting rule of
-    the reconstructed figs. 3.10/3.13 (a point on the footprint edge is not measured).
+    Parameters
+    ----------
+    m : int
+        Image measurements (points × images they are measured on).
+    c, i, l : int
+        XYZ, planimetric (XY) and height control points with weighted observations (3.5.17). (The
+        book's legend calls both the planimetric and the height count "i".)
+    s : int
+        GNSS projection centres (3.5.18).
+    j : int
+        Images with measured angles (3.5.19).
+
+    Returns
+    -------
+    int
+        M.
+
+    Raises
+    ------
+    InputError
+        A negative or non-integer count.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.17)–(3.5.21).
+
+    Examples
+    --------
+    >>> from photolib.triangulation_layouts import bundle_equations
+    >>> bundle_equations(24)                 # fig. 3.10: 4 images × 6 points
+    48
+    >>> bundle_equations(60, c=5, s=8)       # fig. 3.13
+    159
     """
-    p = np.asarray(points_xy, dtype=float).reshape(-1, 2)
-    c = np.asarray(centres_xy, dtype=float).reshape(-1, 2)
-    if not footprint > 0:
-        raise InputError("footprint must be positive")
-    d = np.abs(p[:, None, :] - c[None, :, :])
-    return np.all(d < footprint / 2 * (1 - 1e-9), axis=2)
+    counts = {k: _nonneg_int(k, v) for k, v in dict(m=m, c=c, i=i, l=l, s=s, j=j).items()}
+    return (2 * counts["m"] + 3 * counts["c"] + 2 * counts["i"] + counts["l"] + 3 * counts["s"]
+            + 3 * counts["j"])
 
 
-@dataclass(frozen=True)
-class BookBlock:
-    """A synthetic rebuild of one of the book's block drawings, with truth and seeded observations."""
+def images_per_point(block: Block) -> np.ndarray:
+    """Number of images each point is measured on (the numbers printed in fig. 3.13).
 
-    name: str
-    io: InteriorOrientation
-    order: str
-    cameras: np.ndarray            # (n, 6) true X_S, Y_S, Z_S, ω, α, κ
-    image_labels: tuple            # book labels, e.g. ("P1", "P2", "P3", "P4")
-    points: np.ndarray             # (k, 3) true X, Y, Z
-    point_labels: tuple            # book labels ("1" … "8") or grid positions ("r1c1" …)
-    kind: np.ndarray               # (k,) TIE / CONTROL / CHECK (photolib.synthetic)
-    visibility: np.ndarray         # (k, n) bool, from footprint_visibility
-    observations: Observations     # noisy image coordinates (mm)
-    xy_true: np.ndarray            # (m, 2) noise-free projections
-    sigma: float                   # image noise σ (mm) = unit weight σ₀ of (3.5.7)
-    control_sigma: float | None    # None: control held fixed (3.5.3); else weighted (3.5.17), m
-    gnss: np.ndarray | None        # (n, 3) measured projection centres (3.5.18), m
-    gnss_sigma: float              # their accuracy, m
-    footprint: float               # L, m
-    base: float                    # b, m
-    spacing: float                 # s, m
-    grid: tuple | None = None      # (rows, cols) when the points form the figure's grid (fig. 3.13)
-    noise_seed: int = 0            # seed of the control-coordinate noise (weighted control)
+    Parameters
+    ----------
+    block : Block
+        A synthetic block.
 
-    @property
-    def sigma0(self) -> float:
-        """Unit-weight σ₀ of (3.5.7): the image noise σ, or 0.005 mm for a noise-free block."""
-        return self.sigma if self.sigma > 0 else 0.005
+    Returns
+    -------
+    (k,) int array
 
-    @property
-    def n_images(self) -> int:
-        return self.cameras.shape[0]
+    Raises
+    ------
+    InputError
+        ``block`` is not a :class:`photolib.synthetic.Block`.
 
-    @property
-    def control(self) -> np.ndarray:
-        return np.flatnonzero(self.kind == CONTROL)
+    References
+    ----------
+    Chibunichev (2022), §3.5, fig. 3.13.
 
-    @property
-    def unknown_points(self) -> np.ndarray:
-        """Indices of the points that are unknowns (all of them when control is weighted)."""
-        return np.arange(len(self.points)) if self.control_sigma is not None else np.flatnonzero(self.kind != CONTROL)
-
-    def control_values(self) -> dict:
-        """{point index: measured (X, Y, Z)} — the truth (fixed control) or the truth + seeded noise."""
-        if self.control_sigma is None:
-            return {int(i): self.points[i].copy() for i in self.control}
-        rng = np.random.default_rng(self.noise_seed)
-        noise = rng.normal(0.0, self.control_sigma, (self.control.size, 3))
-        return {int(i): self.points[i] + e for i, e in zip(self.control, noise)}
-
-    def start_values(self, seed: int = 1, centre_sigma: float = 10.0, angle_sigma: float = np.radians(1.0),
-                     point_sigma: float = 10.0):
-        """Seeded approximations (m, rad, m): the truth perturbed; control starts at its measured values."""
-        rng = np.random.default_rng(seed)
-        cams = self.cameras.copy()
-        cams[:, :3] += rng.normal(0.0, centre_sigma, (self.n_images, 3))
-        cams[:, 3:] += rng.normal(0.0, angle_sigma, (self.n_images, 3))
-        pts = self.points + rng.normal(0.0, point_sigma, self.points.shape)
-        for i, xyz in self.control_values().items():
-            pts[i] = xyz
-        return cams, pts
-
-    def with_noise(self, seed: int) -> "BookBlock":
-        """The same geometry with a new seeded realisation of every noise: image coordinates, GNSS
-        centres and (weighted) control coordinates."""
-        rng = np.random.default_rng(seed)
-        o = self.observations
-        obs = Observations(o.image, o.point, self.xy_true + rng.normal(0.0, self.sigma, self.xy_true.shape))
-        gnss = None if self.gnss is None else self.cameras[:, :3] + rng.normal(0.0, self.gnss_sigma, (self.n_images, 3))
-        return replace(self, observations=obs, gnss=gnss, noise_seed=int(rng.integers(2**31)))
-
-    def adjust(self, seed: int = 1, **kwargs) -> BundleResult:
-        """Adjust the block by :func:`photolib.bundle.bundle_adjustment` from seeded start values.
-
-        Control is held fixed (3.5.3) or weighted (3.5.17) as the layout says; GNSS centres (3.5.18)
-        are used when the layout has them. ``kwargs`` go to ``bundle_adjustment``.
-        """
-        cams0, pts0 = self.start_values(seed)
-        args = dict(control=self.control_values(), control_sigma=self.control_sigma, sigma_image=self.sigma0,
-                    order=self.order, covariance=True)
-        if self.gnss is not None:
-            args.update(gnss=self.gnss, gnss_sigma=self.gnss_sigma)
-        args.update(kwargs)
-        return bundle_adjustment(self.observations, cams0, pts0, self.io, **args)
-
-
-def _project(cameras, image, XYZ, io, order):
-    """Collinearity (3.5.1) of points in front of their images (else :class:`InputError`)."""
-    xy, z_star = project_to_images(cameras, image, XYZ, io, order)
-    if np.any(z_star >= 0):
-        raise InputError("a point is not in front of its image")
-    return xy
-
-
-def _build(name, centres_xy, points_xy, kind, image_labels, point_labels, *, f, frame_size, flying_height,
-           sigma, seed, order, control_sigma, gnss_sigma, use_gnss, base, spacing, grid=None, at_principal=None,
-           angle_sigma=np.radians(1.0), relief=15.0):
-    check_order(order)
-    if not sigma >= 0:
-        raise InputError("sigma must be non-negative")
-    rng = np.random.default_rng(seed)
-    io = InteriorOrientation(f=f)
-    footprint = frame_size * flying_height / f
-    centres_xy = np.asarray(centres_xy, dtype=float)
-    points_xy = np.array(points_xy, dtype=float)
-    n = len(centres_xy)
-    cameras = np.empty((n, 6))
-    cameras[:, :2] = centres_xy
-    cameras[:, 2] = flying_height + rng.normal(0.0, 5.0, n)
-    cameras[:, 3:] = rng.normal(0.0, angle_sigma, (n, 3))
-    Z = 5.0 + relief * rng.uniform(0.0, 1.0, len(points_xy))        # terrain 5 … 20 m
-    # points drawn at a principal point ("-ф-" in the figures) lie where the optical axis meets the
-    # terrain — not exactly below S, where ∂x/∂Z_S and (for "kaw") ∂x/∂κ would vanish identically
-    for j, i in (at_principal or {}).items():
-        axis = rotation_matrix(*cameras[i, 3:], order) @ np.array([0.0, 0.0, -1.0])
-        points_xy[j] = cameras[i, :2] + (Z[j] - cameras[i, 2]) / axis[2] * axis[:2]
-    vis = footprint_visibility(points_xy, centres_xy, footprint)
-    points = np.column_stack([points_xy, Z])
-    point_idx, image_idx = np.nonzero(vis)
-    order_obs = np.lexsort((point_idx, image_idx))                    # image by image, as in fig. 3.11
-    image_idx, point_idx = image_idx[order_obs], point_idx[order_obs]
-    xy_true = _project(cameras, image_idx, points[point_idx], io, order)
-    half = frame_size / 2
-    if np.any(np.abs(xy_true) >= half):
-        raise InputError(f"{name}: a projected point falls outside the {frame_size} mm frame; reduce the tilts")
-    xy = xy_true + rng.normal(0.0, sigma, xy_true.shape) if sigma > 0 else xy_true.copy()
-    gnss = None
-    if use_gnss:
-        gnss = cameras[:, :3] + rng.normal(0.0, gnss_sigma, (n, 3))
-    return BookBlock(noise_seed=seed + 101, name=name, io=io, order=order, cameras=cameras, image_labels=tuple(image_labels),
-                     points=points, point_labels=tuple(point_labels), kind=np.asarray(kind), visibility=vis,
-                     observations=Observations(image_idx, point_idx, xy), xy_true=xy_true, sigma=float(sigma),
-                     control_sigma=control_sigma, gnss=gnss, gnss_sigma=float(gnss_sigma), footprint=footprint,
-                     base=base, spacing=spacing, grid=grid)
-
-
-def fig_3_10_block(sigma: float = 0.005, seed: int = 310, *, f: float = 100.0, frame_size: float = 125.0,
-                   flying_height: float = 1000.0, order: str = "kaw") -> BookBlock:
-    """Fig. 3.10: two strips (P1–P2, P3–P4) of one stereopair, 60 % forward and 60 % side overlap.
-
-    Footprint L = frame·H/f (1250 m by default), base b = strip spacing s = 0.4L (500 m). Tie
-    points 1, 2, 5, 6 at the nadirs of P1, P2, P3, P4 (seen on all four images); XYZ control 3, 4
-    at s/2 beyond strip 1 (on P1, P2 only) and 7, 8 at s/2 beyond strip 2 (on P3, P4 only), held
-    fixed (3.5.3). Every image then measures six points: N = 36, M = 48 (book, lines 2080–2083).
-    True tilts are small (seeded, σ = 1°), terrain heights 5–20 m.
+    Examples
+    --------
+    >>> from photolib.synthetic import footprint_block, TIE
+    >>> from photolib.triangulation_layouts import images_per_point
+    >>> blk = footprint_block([[0, 0], [500, 0]], [[0, 0], [500, 0], [-300, 0]], [TIE] * 3, sigma=0)
+    >>> images_per_point(blk).tolist()
+    [2, 2, 1]
     """
-    L = frame_size * flying_height / f
-    b = s = 0.4 * L
-    x0, y0 = 1000.0, 1000.0
-    centres = [(x0, y0), (x0 + b, y0), (x0, y0 - s), (x0 + b, y0 - s)]
-    pts = {1: (x0, y0), 2: (x0 + b, y0), 3: (x0, y0 + s / 2), 4: (x0 + b, y0 + s / 2),
-           5: (x0, y0 - s), 6: (x0 + b, y0 - s), 7: (x0, y0 - 1.5 * s), 8: (x0 + b, y0 - 1.5 * s)}
-    kind = [CONTROL if k in (3, 4, 7, 8) else TIE for k in pts]
-    return _build("fig3.10", centres, list(pts.values()), kind, ("P1", "P2", "P3", "P4"),
-                  tuple(str(k) for k in pts), f=f, frame_size=frame_size, flying_height=flying_height,
-                  sigma=sigma, seed=seed, order=order, control_sigma=None, gnss_sigma=0.05, use_gnss=False,
-                  base=b, spacing=s, at_principal={0: 0, 1: 1, 4: 2, 5: 3})
-
-
-def fig_3_13_block(sigma: float = 0.005, seed: int = 313, *, control_sigma: float = 0.05, gnss_sigma: float = 0.05,
-                   f: float = 100.0, frame_size: float = 125.0, flying_height: float = 1000.0,
-                   order: str = "kaw") -> BookBlock:
-    """Fig. 3.13: two strips of four images, 60 % forward and 30 % side overlap.
-
-    b = 0.4L, s = 0.7L. A 5 × 4 grid of 20 points: rows at +s/2, 0 (nadirs of strip 1), −s/2, −s
-    (nadirs of strip 2), −1.5s; columns at the nadirs. Control (weighted, (3.5.17), σ =
-    ``control_sigma``): the four corners and the right end of the middle row (c = 5); all eight
-    projection centres measured by GNSS (3.5.18, σ = ``gnss_sigma``). The footprints give the
-    figure's images-per-point counts 2-3-3-2 / 2-3-3-2 / 4-6-6-4 / 2-3-3-2 / 2-3-3-2 (m = 60) —
-    with 30 % side overlap only. Book (lines 2164–2186): N = 108, M = 159.
-    """
-    L = frame_size * flying_height / f
-    b, s = 0.4 * L, 0.7 * L
-    x0, y0 = 1000.0, 1000.0
-    centres = [(x0 + i * b, y0) for i in range(4)] + [(x0 + i * b, y0 - s) for i in range(4)]
-    rows = [s / 2, 0.0, -s / 2, -s, -1.5 * s]
-    pts = [(x0 + c * b, y0 + y) for y in rows for c in range(4)]
-    control = {(0, 0), (0, 3), (4, 0), (4, 3), (2, 3)}
-    kind = [CONTROL if (r, c) in control else TIE for r in range(5) for c in range(4)]
-    labels = [f"r{r + 1}c{c + 1}" for r in range(5) for c in range(4)]
-    images = [f"P{i + 1}" for i in range(8)]
-    return _build("fig3.13", centres, pts, kind, images, labels, f=f, frame_size=frame_size,
-                  flying_height=flying_height, sigma=sigma, seed=seed, order=order, control_sigma=control_sigma,
-                  gnss_sigma=gnss_sigma, use_gnss=True, base=b, spacing=s, grid=(5, 4),
-                  at_principal={4 + c: c for c in range(4)} | {12 + c: 4 + c for c in range(4)})
-
-
-def images_per_point(block: BookBlock) -> np.ndarray:
-    """(k,) number of images each point is measured on (the numbers printed in fig. 3.13)."""
+    _check_block(block)
     return block.visibility.sum(axis=1)
 
 
-def block_counts(block: BookBlock) -> dict:
-    """The inputs of (3.5.20)/(3.5.21) read off the layout, and N, M from the formulas.
+def block_counts(block: Block) -> dict:
+    """The inputs of (3.5.20)/(3.5.21) read off a block, and N, M from the formulas.
 
     k counts the point unknowns: with fixed control (fig. 3.10) the determined points only, with
     weighted control (fig. 3.13) all points — the book's two conventions.
+
+    Parameters
+    ----------
+    block : Block
+        A synthetic block (control fixed or weighted, GNSS centres optional).
+
+    Returns
+    -------
+    dict
+        ``n, k, m, c, i, l, s, j, N, M`` and ``points_per_image`` (n,).
+
+    Raises
+    ------
+    InputError
+        ``block`` is not a :class:`photolib.synthetic.Block`.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.20), (3.5.21); figs. 3.10, 3.13.
+
+    Examples
+    --------
+    >>> from photolib.synthetic import footprint_block, TIE, CONTROL
+    >>> from photolib.triangulation_layouts import block_counts
+    >>> blk = footprint_block([[0, 0], [500, 0]], [[0, 0], [500, 0], [250, 300]], [TIE, TIE, CONTROL])
+    >>> c = block_counts(blk)
+    >>> c["n"], c["k"], c["m"], c["N"], c["M"]
+    (2, 2, 6, 18, 12)
     """
+    _check_block(block)
+    vis = block.visibility
     c = int(block.control.size) if block.control_sigma is not None else 0
     s = 0 if block.gnss is None else int(np.isfinite(block.gnss).all(axis=1).sum())
-    out = dict(n=block.n_images, k=int(block.unknown_points.size), m=int(block.visibility.sum()), c=c, i=0, l=0,
-               s=s, j=0)
+    out = dict(n=block.n_images, k=int(block.unknown_points.size), m=int(vis.sum()), c=c, i=0, l=0, s=s, j=0)
     out["N"] = bundle_unknowns(out["n"], out["k"])
     out["M"] = bundle_equations(out["m"], c, 0, 0, s, 0)
-    out["points_per_image"] = block.visibility.sum(axis=0)
+    out["points_per_image"] = vis.sum(axis=0)
     return out
 
 
 # --- the correction equations as one dense system (fig. 3.11) -------------------------------------
-@dataclass
+@dataclass(repr=False)
 class BundleSystem:
-    """Dense A·δ + L = V (3.5.5) with weights P (3.5.7), in the column order of fig. 3.11."""
+    """Dense correction equations A·δ + L = V (3.5.5) with weights P (3.5.7), columns as in fig. 3.11.
 
-    A: np.ndarray                  # (M, N)
-    L: np.ndarray                  # (M,)
-    P: np.ndarray                  # (M,) p = σ₀²/m²
-    row_kind: np.ndarray           # (M,) "tie" (3.5.2), "control" (3.5.3), "ground" (3.5.17), "gnss" (3.5.18), "ins" (3.5.19)
-    columns: list                  # (N,) names, e.g. "P1:X_S", "1:X"
-    n_eo: int                      # number of EO columns (6n): δ₁ = first n_eo unknowns
+    Attributes
+    ----------
+    A : (M, N) array
+        Coefficients.
+    L : (M,) array
+        Free terms.
+    P : (M,) array
+        Weights p = σ₀²/m² of the equations.
+    row_kind : (M,) array of str
+        "tie" (3.5.2), "control" (3.5.3), "ground" (3.5.17), "gnss" (3.5.18), "ins" (3.5.19).
+    columns : list of str
+        Names of the N unknowns, e.g. "P1:X_S", "1:X".
+    n_eo : int
+        Number of EO columns (6n): δ₁ is the first ``n_eo`` unknowns.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.5), (3.5.7), (3.5.8); figs. 3.11, 3.12.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.triangulation_layouts import BundleSystem
+    >>> s = BundleSystem(np.eye(2), np.zeros(2), np.ones(2), np.array(["tie", "tie"]), ["a", "b"], 0)
+    >>> s
+    BundleSystem(A 2×2, rank 2, 2 non-zeros; rows: 2 tie)
+    """
+
+    A: np.ndarray
+    L: np.ndarray
+    P: np.ndarray
+    row_kind: np.ndarray
+    columns: list
+    n_eo: int
+
+    def __repr__(self) -> str:
+        kinds, counts = np.unique(self.row_kind, return_counts=True)
+        rows = ", ".join(f"{c} {k}" for k, c in zip(kinds, counts))
+        return f"BundleSystem(A {self.A.shape[0]}×{self.A.shape[1]}, rank {self.rank}, {self.nnz} non-zeros; rows: {rows})"
 
     @property
     def shape(self) -> tuple:
+        """(M, N)."""
         return self.A.shape
 
     @property
     def nnz(self) -> int:
+        """Number of non-zero coefficients of A."""
         return int(np.count_nonzero(self.A))
 
     @property
     def rank(self) -> int:
-        As = self.A / np.linalg.norm(self.A, axis=0)
+        """Rank of A (columns equilibrated)."""
+        norms = np.linalg.norm(self.A, axis=0)
+        As = self.A / np.where(norms > 0, norms, 1.0)
         return int(np.linalg.matrix_rank(As))
 
     def normal(self):
@@ -325,21 +281,72 @@ class BundleSystem:
         return self.A.T @ PA, PA.T @ self.L
 
 
-def correction_equation_system(block: BookBlock, cameras=None, points=None, *, planimetric=(), height=(),
-                               ins=None, ins_sigma: float = np.radians(0.005)) -> BundleSystem:
-    """Build the block's correction equations densely at (``cameras``, ``points``) (default: truth).
+def _as_array(value, shape, what):
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be numbers") from None
+    if arr.shape != shape:
+        raise InputError(f"{what}: expected shape {shape}, got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise InputError(f"{what} contain NaN or inf")
+    return arr
 
-    Rows, in this order: the image observations image by image ((3.5.2) for unknown points, (3.5.3)
-    for fixed control), then for weighted control (3.5.17) three rows per XYZ point (two for a
-    point listed in ``planimetric``, one for ``height``), then GNSS centres (3.5.18), then INS
-    angles (3.5.19) for the images whose row of ``ins`` (n, 3) is finite. Columns: the six EO of
-    every image, then X, Y, Z of every unknown point. The image rows come from
-    :func:`photolib.bundle.bundle_correction_equations` through :func:`photolib.lsq.block_equations_dense`.
+
+def correction_equation_system(block: Block, cameras=None, points=None, *, planimetric=(), height=(),
+                               ins=None, ins_sigma: float = np.radians(0.005)) -> BundleSystem:
+    """Build a block's correction equations densely at (``cameras``, ``points``) (default: the truth).
+
+    Rows, in this order: the image observations image by image ((3.5.2) for unknown points,
+    (3.5.3) for fixed control), then for weighted control (3.5.17) three rows per XYZ point (two
+    for a point listed in ``planimetric``, one for ``height``), then GNSS centres (3.5.18), then
+    INS angles (3.5.19) for the images whose row of ``ins`` (n, 3) is finite. Columns: the six EO
+    of every image, then X, Y, Z of every unknown point. The image rows come from
+    :func:`photolib.bundle.bundle_correction_equations` through
+    :func:`photolib.lsq.block_equations_dense`.
+
+    Parameters
+    ----------
+    block : Block
+        The block (observations, control, GNSS, labels).
+    cameras : (n, 6) array, optional
+        Approximate EO; default the truth.
+    points : (k, 3) array, optional
+        Approximate points; default the truth.
+    planimetric, height : iterable of int
+        Control points observed in X, Y only / in Z only (weighted control only).
+    ins : (n, 3) array, optional
+        Measured angles per image (NaN rows: none).
+    ins_sigma : float
+        Their accuracy, rad.
+
+    Returns
+    -------
+    BundleSystem
+
+    Raises
+    ------
+    InputError
+        Wrong shapes or NaN/inf in ``cameras``/``points``, planimetric/height control with fixed
+        control, ``ins`` of the wrong shape, a non-positive ``ins_sigma``.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.2), (3.5.3), (3.5.5), (3.5.17)–(3.5.19); fig. 3.11.
+
+    Examples
+    --------
+    >>> from photolib.synthetic import footprint_block, TIE, CONTROL
+    >>> from photolib.triangulation_layouts import correction_equation_system
+    >>> blk = footprint_block([[0, 0], [500, 0]], [[0, 0], [500, 0], [250, 300]], [TIE, TIE, CONTROL])
+    >>> correction_equation_system(blk).shape
+    (12, 18)
     """
-    cams = block.cameras if cameras is None else np.asarray(cameras, dtype=float)
-    pts = block.points if points is None else np.asarray(points, dtype=float)
+    _check_block(block)
+    n, k = block.n_images, len(block.points)
+    cams = block.cameras if cameras is None else _as_array(cameras, (n, 6), "cameras")
+    pts = block.points if points is None else _as_array(points, (k, 3), "points")
     o = block.observations
-    n, k = block.n_images, len(pts)
     eq = bundle_correction_equations(o.image, o.point, o.xy, cams, pts, block.io, block.order)
     free = np.zeros(k, bool)
     free[block.unknown_points] = True
@@ -376,9 +383,14 @@ def correction_equation_system(block: BookBlock, cameras=None, points=None, *, p
                 for a in range(3):
                     direct(6 * i + a, cams[i, a] - block.gnss[i, a], w, "gnss")              # (3.5.18)
     if ins is not None:
-        ins = np.asarray(ins, dtype=float)
+        try:
+            ins = np.asarray(ins, dtype=float)
+        except (TypeError, ValueError):
+            raise InputError("ins must be numbers") from None
         if ins.shape != (n, 3):
             raise InputError(f"ins: expected ({n}, 3), got {ins.shape}")
+        if not (np.isfinite(ins_sigma) and ins_sigma > 0):
+            raise InputError("ins_sigma must be a positive number (rad)")
         w = (block.sigma0 / ins_sigma) ** 2
         for i in range(n):
             if np.all(np.isfinite(ins[i])):
@@ -393,12 +405,41 @@ def correction_equation_system(block: BookBlock, cameras=None, points=None, *, p
 
 
 def normal_matrix_structure(system: BundleSystem) -> dict:
-    """The structure of N = AᵀPA stated for fig. 3.12, measured on the built system.
+    """The structure of N = AᵀPA stated for fig. 3.12, measured on a built system.
 
-    Returns ``N11_block`` / ``N22_block`` ("6×6" / "3×3" when N₁₁ / N₂₂ are block-diagonal with full
-    blocks of that size, else "not block-diagonal"), ``N12_zero_fraction`` (share of exactly zero
-    entries of N₁₂) and ``N12_pattern`` ("sparse" when more than half of N₁₂ is zero, else "dense").
+    Parameters
+    ----------
+    system : BundleSystem
+        From :func:`correction_equation_system`.
+
+    Returns
+    -------
+    dict
+        ``N11_block`` / ``N22_block`` ("6×6" / "3×3" when N₁₁ / N₂₂ are block-diagonal with full
+        blocks of that size, else "not block-diagonal"), ``N12_zero_fraction`` (share of exactly
+        zero entries of N₁₂) and ``N12_pattern`` ("sparse" when more than half of N₁₂ is zero,
+        else "dense").
+
+    Raises
+    ------
+    InputError
+        ``system`` is not a :class:`BundleSystem`.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.8), (3.5.12); fig. 3.12.
+
+    Examples
+    --------
+    >>> from photolib.synthetic import footprint_block, TIE, CONTROL
+    >>> from photolib.triangulation_layouts import correction_equation_system, normal_matrix_structure
+    >>> blk = footprint_block([[0, 0], [500, 0]], [[0, 0], [500, 0], [250, 300]], [TIE, TIE, CONTROL])
+    >>> st = normal_matrix_structure(correction_equation_system(blk))
+    >>> st["N11_block"], st["N22_block"], st["N12_pattern"]
+    ('6×6', '3×3', 'dense')
     """
+    if not isinstance(system, BundleSystem):
+        raise InputError(f"expected a BundleSystem, got {type(system).__name__}")
     N, _ = system.normal()
     q = system.n_eo
     nz = N != 0
@@ -417,53 +458,182 @@ def normal_matrix_structure(system: BundleSystem) -> dict:
 
 
 # --- accuracy of the adjusted points --------------------------------------------------------------
-def predicted_point_sigma(result: BundleResult, sigma_image: float) -> np.ndarray:
-    """(k, 3) a-priori standard deviations σ₀·√Q_jj of the points (m_j of (3.5.11) with μ → σ₀).
+def predicted_point_sigma(result, sigma_image: float) -> np.ndarray:
+    """A-priori standard deviations σ₀·√Q_jj of the adjusted points (m_j of (3.5.11) with μ → σ₀).
 
     ``bundle_adjustment`` reports m_j = μ√Q_jj; with the weights p = σ₀²/m² the a-priori value
     replaces μ by σ₀ = ``sigma_image``.
+
+    Parameters
+    ----------
+    result : BundleResult
+        Of :func:`photolib.bundle.bundle_adjustment` run with ``covariance=True``.
+    sigma_image : float
+        σ₀, mm.
+
+    Returns
+    -------
+    (k, 3) array
+        σ of X, Y, Z, m (NaN when μ = 0).
+
+    Raises
+    ------
+    InputError
+        No covariance in ``result``, a non-positive or non-finite ``sigma_image``.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.7), (3.5.11).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> import numpy as np
+    >>> from photolib.triangulation_layouts import predicted_point_sigma
+    >>> predicted_point_sigma(SimpleNamespace(points_std=np.array([[0.2, 0.2, 0.4]]), mu=0.01), 0.005)
+    array([[0.1, 0.1, 0.2]])
     """
-    if result.points_std is None:
-        raise InputError("the adjustment was run without covariance")
-    return result.points_std * (sigma_image / result.mu) if result.mu > 0 else result.points_std * np.nan
+    if not (isinstance(sigma_image, (int, float, np.floating)) and np.isfinite(sigma_image) and sigma_image > 0):
+        raise InputError("sigma_image must be a positive number (mm)")
+    std = getattr(result, "points_std", None)
+    mu = getattr(result, "mu", None)
+    if std is None or mu is None:
+        raise InputError("the adjustment was run without covariance (no points_std)")
+    return std * (sigma_image / mu) if mu > 0 else std * np.nan
 
 
-def check_point_accuracy(block: BookBlock, result: BundleResult, indices=None) -> dict:
+def check_point_accuracy(block: Block, result, indices=None) -> dict:
     """Errors of the adjusted points against the truth: r.m.s. per axis and the predicted σ.
 
-    ``indices`` default: the tie points (the points not used as control). Returns ``rms`` (3,),
-    ``predicted`` (3,) = r.m.s. of σ₀√Q_jj over the same points, ``errors`` (c, 3).
+    Parameters
+    ----------
+    block : Block
+        The block whose truth is compared.
+    result : BundleResult
+        Its adjustment (with covariance).
+    indices : array of int, optional
+        Points to compare; default the points not used as control.
+
+    Returns
+    -------
+    dict
+        ``indices``, ``errors`` (c, 3), ``rms`` (3,) and ``predicted`` (3,) = r.m.s. of σ₀√Q_jj
+        over the same points, m.
+
+    Raises
+    ------
+    InputError
+        Not a block, a result without covariance or with another number of points, indices out of
+        range or empty.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eq. (3.5.11); §3.7 (check points).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> import numpy as np
+    >>> from photolib.synthetic import footprint_block, TIE, CONTROL
+    >>> from photolib.triangulation_layouts import check_point_accuracy
+    >>> blk = footprint_block([[0, 0], [500, 0]], [[0, 0], [500, 0], [250, 300]], [TIE, TIE, CONTROL])
+    >>> res = SimpleNamespace(points=blk.points + [0.0, 0.0, 0.1], points_std=np.full((3, 3), 0.1), mu=0.005)
+    >>> check_point_accuracy(blk, res)["rms"]
+    array([0. , 0. , 0.1])
     """
-    idx = np.flatnonzero(block.kind != CONTROL) if indices is None else np.asarray(indices, dtype=np.intp)
-    err = result.points[idx] - block.points[idx]
+    _check_block(block)
+    pts = getattr(result, "points", None)
+    if pts is None or np.shape(pts) != block.points.shape:
+        raise InputError("the result does not hold the block's points")
+    if indices is None:
+        idx = np.flatnonzero(block.kind != CONTROL)
+    else:
+        idx = np.asarray(indices).reshape(-1)
+        if idx.dtype.kind not in "iu":
+            raise InputError("indices must be integers")
+    if idx.size == 0 or idx.min() < 0 or idx.max() >= len(block.points):
+        raise InputError(f"indices must select some of the {len(block.points)} points")
+    err = np.asarray(pts)[idx] - block.points[idx]
     pred = predicted_point_sigma(result, block.sigma0)[idx]
     return {"indices": idx, "errors": err, "rms": np.sqrt(np.mean(err ** 2, axis=0)),
             "predicted": np.sqrt(np.mean(pred ** 2, axis=0))}
 
 
-# --- §3.7 regulation tolerances (our helper; numbers from textbook/ch03.toml) ---------------------
-REGULATIONS_ID = "3.7-tolerances"
+# --- §3.7 regulation tolerances (our helper; the numbers are the caller's) ------------------------
+TOLERANCE_NAMES = ("3.7.2 tie height", "3.7.6 control height", "3.7.6 control plan", "3.7.6 check plan",
+                   "3.7.6 height, category a", "3.7.6 height, category b", "3.7.6 height, category c",
+                   "3.7.7 height, category a", "3.7.7 height, category b", "3.7.7 height, category c",
+                   "3.7.6 limit share, open", "3.7.6 limit share, wooded", "3.7.6 limit factor")
+"""Keys of the ``tolerances`` mapping (the quantity names of the book's example ``3.7-tolerances``)."""
 
 
-def regulation_value(name: str) -> float:
-    """A tolerance of §3.7 as transcribed in ``textbook/ch03.toml`` (example ``3.7-tolerances``)."""
-    from .textbook import load_chapter
-    ex = load_chapter(3).example(REGULATIONS_ID)
-    for q in ex.quantities:
-        if q.name == name:
-            return q.value
-    raise KeyError(f"{REGULATIONS_ID} has no quantity {name!r}")
+def _tolerance(tolerances, name) -> float:
+    try:
+        value = tolerances[name]
+    except (KeyError, TypeError, IndexError):
+        raise InputError(f"tolerances: give a mapping with the value of {name!r}") from None
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"tolerances[{name!r}] must be a number, got {value!r}") from None
+    if not np.isfinite(value) or value < 0:
+        raise InputError(f"tolerances[{name!r}] must be a finite non-negative number")
+    return value
 
 
-def check_height_factor(contour_interval: float, scale_denominator: float, stage: str = "check") -> float:
+def _positive(value, what) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be a number, got {value!r}") from None
+    if not (np.isfinite(v) and v > 0):
+        raise InputError(f"{what} must be a finite positive number, got {value!r}")
+    return v
+
+
+def check_height_factor(contour_interval: float, scale_denominator: float, tolerances, stage: str = "check") -> float:
     """The factor of the contour interval h for mean height discrepancies, 3.7.6 / 3.7.7.
 
-    ``stage="check"``: check points after external orientation (3.7.6: 0.2h, 0.25h, 0.35h);
-    ``stage="common"``: common points of adjacent strips (3.7.7: 0.4h, 0.5h, 0.7h). The category is
-    (a) h = 1 m, or h = 0.5 m at 1:1000 and 1:500; (b) h = 2 or 2.5 m, or h = 0.5 m at 1:2000 and
-    1:5000; (c) h = 5 or 10 m. Other combinations are not covered by the Instruction: InputError.
+    ``stage="check"``: check points after external orientation (3.7.6); ``stage="common"``: common
+    points of adjacent strips (3.7.7). The category is (a) h = 1 m, or h = 0.5 m at 1:1000 and
+    1:500; (b) h = 2 or 2.5 m, or h = 0.5 m at 1:2000 and 1:5000; (c) h = 5 or 10 m.
+
+    Parameters
+    ----------
+    contour_interval : float
+        h, m.
+    scale_denominator : float
+        Map scale 1 : ``scale_denominator``.
+    tolerances : mapping
+        Values for the keys "3.7.6 height, category a" … "3.7.7 height, category c".
+    stage : {"check", "common"}
+        Which clause.
+
+    Returns
+    -------
+    float
+        The factor (e.g. 0.2 for 0.2h).
+
+    Raises
+    ------
+    InputError
+        A combination the Instruction does not cover, an unknown stage, NaN/inf, a missing tolerance.
+
+    References
+    ----------
+    Chibunichev (2022), §3.7, Instruction clauses 3.7.6, 3.7.7.
+
+    Examples
+    --------
+    >>> from photolib.triangulation_layouts import check_height_factor
+    >>> tol = {"3.7.6 height, category a": 0.2, "3.7.6 height, category b": 0.25}
+    >>> check_height_factor(0.5, 2000, tol)
+    0.25
     """
-    h, sc = float(contour_interval), float(scale_denominator)
+    h, sc = _positive(contour_interval, "contour_interval"), _positive(scale_denominator, "scale_denominator")
+    clause = {"check": "3.7.6", "common": "3.7.7"}.get(stage) if isinstance(stage, str) else None
+    if clause is None:
+        raise InputError("stage must be 'check' or 'common'")
     if h == 1.0 or (h == 0.5 and sc in (1000.0, 500.0)):
         cat = "a"
     elif h in (2.0, 2.5) or (h == 0.5 and sc in (2000.0, 5000.0)):
@@ -472,22 +642,72 @@ def check_height_factor(contour_interval: float, scale_denominator: float, stage
         cat = "c"
     else:
         raise InputError(f"contour interval {h} m at 1:{sc:g} is not covered by 3.7.6/3.7.7")
-    clause = {"check": "3.7.6", "common": "3.7.7"}.get(stage)
-    if clause is None:
-        raise InputError("stage must be 'check' or 'common'")
-    return regulation_value(f"{clause} height, category {cat}")
+    return _tolerance(tolerances, f"{clause} height, category {cat}")
 
 
-def free_strip_height_tolerance_um(f_mm: float, base_image_mm: float) -> float:
-    """3.7.2: r.m.s. height discrepancy of tie points in a free strip ≤ 15 µm · f / b (µm at image scale)."""
-    if not (f_mm > 0 and base_image_mm > 0):
-        raise InputError("f and the image base must be positive")
-    return regulation_value("3.7.2 tie height") * f_mm / base_image_mm
+def free_strip_height_tolerance_um(f_mm: float, base_image_mm: float, tolerances) -> float:
+    """3.7.2: r.m.s. height discrepancy of tie points in a free strip ≤ 15 µm · f / b.
+
+    Parameters
+    ----------
+    f_mm : float
+        Focal length, mm.
+    base_image_mm : float
+        Photo base at image scale, mm.
+    tolerances : mapping
+        The value of "3.7.2 tie height" (µm; the Instruction says 15).
+
+    Returns
+    -------
+    float
+        The tolerance, µm at image scale.
+
+    Raises
+    ------
+    InputError
+        Non-positive or non-finite f or base, a missing tolerance.
+
+    References
+    ----------
+    Chibunichev (2022), §3.7, Instruction clause 3.7.2.
+
+    Examples
+    --------
+    >>> from photolib.triangulation_layouts import free_strip_height_tolerance_um
+    >>> free_strip_height_tolerance_um(100.0, 50.0, {"3.7.2 tie height": 15})
+    30.0
+    """
+    f_mm, b = _positive(f_mm, "f_mm"), _positive(base_image_mm, "base_image_mm")
+    return _tolerance(tolerances, "3.7.2 tie height") * f_mm / b
 
 
 @dataclass(frozen=True)
 class Criterion:
-    """One tolerance check: clause, what, measured value, tolerance, passed."""
+    """One tolerance check of :func:`evaluate_regulations`.
+
+    Attributes
+    ----------
+    clause : str
+        The Instruction's clause, e.g. "3.7.6".
+    what : str
+        What is checked.
+    value, tolerance : float
+        Measured value and its tolerance, in ``unit``.
+    unit : str
+        "m" or "%".
+    passed : bool
+        ``value <= tolerance``.
+
+    References
+    ----------
+    Chibunichev (2022), §3.7, Instruction clause 3.7.6.
+
+    Examples
+    --------
+    >>> from photolib.triangulation_layouts import Criterion
+    >>> Criterion("3.7.6", "mean |ΔZ| at check points", 0.031, 0.1, "m", True)
+    3.7.6 mean |ΔZ| at check points: 0.031 m ≤ 0.100 m (passed)
+    """
 
     clause: str
     what: str
@@ -496,10 +716,34 @@ class Criterion:
     unit: str
     passed: bool
 
+    def __repr__(self) -> str:
+        rel = "≤" if self.passed else ">"
+        return (f"{self.clause} {self.what}: {self.value:.3f} {self.unit} {rel} {self.tolerance:.3f} {self.unit} "
+                f"({'passed' if self.passed else 'FAILED'})")
+
+
+def _errors(values, what):
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be numbers") from None
+    if arr.size % 3 or (arr.ndim == 2 and arr.shape[1] != 3) or arr.ndim > 2:
+        raise InputError(f"{what}: expected an array of shape (c, 3), got {arr.shape}")
+    arr = arr.reshape(-1, 3)
+    if not np.all(np.isfinite(arr)):
+        raise InputError(f"{what} contain NaN or inf")
+    return arr
+
 
 def evaluate_regulations(control_errors, check_errors, scale_denominator: float, contour_interval: float,
-                         wooded: bool = False) -> list:
+                         tolerances, wooded: bool = False) -> list:
     """Evaluate a controlled block against the 3.7.6 tolerances (our helper, not in the book).
+
+    Our reading of the Instruction: a "mean" discrepancy is the mean absolute height error and
+    the mean length of the planimetric error vector; a "limit" discrepancy is one that reaches
+    ``limit factor`` (twice) the tolerance for the mean ("предельно допустимые расхождения, равные
+    удвоенным средним"), and the share of check points with such discrepancies must not exceed
+    5 % (10 % in forest).
 
     Parameters
     ----------
@@ -509,34 +753,54 @@ def evaluate_regulations(control_errors, check_errors, scale_denominator: float,
         Map (plan) scale 1 : ``scale_denominator``; planimetric tolerances are mm at map scale.
     contour_interval : float
         h, m.
+    tolerances : mapping
+        Values for :data:`TOLERANCE_NAMES` (the book layer passes the transcribed §3.7 numbers).
     wooded : bool
         Forested area: limit discrepancies allowed in 10 % of the check points instead of 5 %.
 
-    Our reading of the Instruction: a "mean" discrepancy is the mean absolute height error and the
-    mean length of the planimetric error vector; a "limit" discrepancy is one that reaches twice
-    the tolerance for the mean ("предельно допустимые расхождения, равные удвоенным средним"), and
-    the share of check points with such discrepancies must not exceed 5 % (10 % in forest).
+    Returns
+    -------
+    list of Criterion
+
+    Raises
+    ------
+    InputError
+        NaN/inf or wrong shapes, no check point, an uncovered contour interval, a missing tolerance.
+
+    References
+    ----------
+    Chibunichev (2022), §3.7, Instruction clauses 3.7.6, 3.7.7.
+
+    Examples
+    --------
+    >>> from photolib.triangulation_layouts import evaluate_regulations
+    >>> tol = {"3.7.6 control height": 0.2, "3.7.6 control plan": 0.2, "3.7.6 check plan": 0.35,
+    ...        "3.7.6 height, category b": 0.25, "3.7.6 limit share, open": 5, "3.7.6 limit factor": 2}
+    >>> rows = evaluate_regulations([[0.01, 0.0, 0.02]], [[0.1, 0.0, 0.05]], 2000, 0.5, tol)
+    >>> [r.passed for r in rows]
+    [True, True, True, True, True, True]
     """
-    ce = np.asarray(control_errors, dtype=float).reshape(-1, 3)
-    ke = np.asarray(check_errors, dtype=float).reshape(-1, 3)
-    if ke.shape[0] == 0 or not (np.all(np.isfinite(ce)) and np.all(np.isfinite(ke))):
-        raise InputError("give finite (c, 3) control and check-point errors (at least one check point)")
-    h, mm = float(contour_interval), float(scale_denominator) / 1000.0           # 1 mm at map scale in m
+    ce = _errors(control_errors, "control_errors")
+    ke = _errors(check_errors, "check_errors")
+    if ke.shape[0] == 0:
+        raise InputError("give at least one check point")
+    h, sc = _positive(contour_interval, "contour_interval"), _positive(scale_denominator, "scale_denominator")
+    mm = sc / 1000.0                                                              # 1 mm at map scale in m
     out = []
     if ce.shape[0]:
-        t = regulation_value("3.7.6 control height") * h
+        t = _tolerance(tolerances, "3.7.6 control height") * h
         v = float(np.mean(np.abs(ce[:, 2])))
         out.append(Criterion("3.7.6", "mean |ΔZ| at control points", v, t, "m", v <= t))
-        t = regulation_value("3.7.6 control plan") * mm
+        t = _tolerance(tolerances, "3.7.6 control plan") * mm
         v = float(np.mean(np.hypot(ce[:, 0], ce[:, 1])))
         out.append(Criterion("3.7.6", "mean ΔXY at control points", v, t, "m", v <= t))
-    t_h = check_height_factor(h, scale_denominator) * h
-    t_p = regulation_value("3.7.6 check plan") * mm
+    t_h = check_height_factor(h, sc, tolerances) * h
+    t_p = _tolerance(tolerances, "3.7.6 check plan") * mm
     dz, dp = np.abs(ke[:, 2]), np.hypot(ke[:, 0], ke[:, 1])
-    out.append(Criterion("3.7.6", "mean |ΔZ| at check points", float(dz.mean()), t_h, "m", dz.mean() <= t_h))
-    out.append(Criterion("3.7.6", "mean ΔXY at check points", float(dp.mean()), t_p, "m", dp.mean() <= t_p))
-    share = regulation_value("3.7.6 limit share, wooded" if wooded else "3.7.6 limit share, open")
-    factor = regulation_value("3.7.6 limit factor")
+    out.append(Criterion("3.7.6", "mean |ΔZ| at check points", float(dz.mean()), t_h, "m", bool(dz.mean() <= t_h)))
+    out.append(Criterion("3.7.6", "mean ΔXY at check points", float(dp.mean()), t_p, "m", bool(dp.mean() <= t_p)))
+    share = _tolerance(tolerances, "3.7.6 limit share, wooded" if wooded else "3.7.6 limit share, open")
+    factor = _tolerance(tolerances, "3.7.6 limit factor")
     for what, e, t in (("height", dz, t_h), ("plan", dp, t_p)):
         frac = float(np.mean(e >= factor * t))
         out.append(Criterion("3.7.6", f"share of check points with {what} error ≥ {factor:g}× tolerance",

@@ -23,18 +23,11 @@ import sympy as sp
 
 from ..errors import InputError
 from ..triangulation_layouts import (block_counts, bundle_equations, bundle_unknowns, correction_equation_system,
-                                     fig_3_10_block, fig_3_13_block, images_per_point, normal_matrix_structure)
+                                     images_per_point, normal_matrix_structure)
+from .ch03_layouts import bundle_system_counts as _system_counts, fig_3_10_block, fig_3_13_block
 
 
 # --- examples ------------------------------------------------------------------------------------
-def _system_counts(system) -> dict:
-    kinds = system.row_kind
-    n = system.n_eo // 6
-    return {"n": n, "k": (system.A.shape[1] - system.n_eo) // 3, "N": int(system.A.shape[1]),
-            "M": int(system.A.shape[0]), "m": int(np.isin(kinds, ("tie", "control")).sum() // 2),
-            "c": int((kinds == "ground").sum() // 3), "s": int((kinds == "gnss").sum() // 3)}
-
-
 def fig_3_10_counts(inputs: dict) -> dict:
     """Fig. 3.10: build the correction equations of the rebuilt block and count rows and columns."""
     blk = fig_3_10_block(sigma=inputs.get("sigma_mm", 0.005), seed=inputs.get("seed", 310))

@@ -12,6 +12,7 @@ import numpy as np
 import sympy as sp
 
 from .. import bundle, derivations as D, synthetic
+from .ch03_layouts import fig_3_10_block
 from ..camera import InteriorOrientation
 
 
@@ -72,7 +73,7 @@ def penta_unknowns(inputs: dict) -> dict:
 # --- E8: fig. 3.18, the fig. 3.10 block shot with a stereo camera ---------------------------------
 def fig318_systems(inputs: dict | None = None) -> dict:
     """Shapes of the correction-equation systems of fig. 3.11 (free EO) and fig. 3.18 (stereo rig)."""
-    blk, _ = synthetic.fig310_block(rig=True, sigma=0.0)
+    blk = fig_3_10_block(rig=True, sigma=0.0)
     free = blk.kind == synthetic.TIE
     shapes = {}
     for par in ("free", "rig"):

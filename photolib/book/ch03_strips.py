@@ -13,6 +13,7 @@ import numpy as np
 import sympy as sp
 
 from .. import strip_triangulation as st
+from ..synthetic import TIE
 from ..derivations import rotation_matrix_symbolic
 
 
@@ -88,7 +89,7 @@ def gnss_datum(inputs: dict) -> dict:
     """
     def minimum(blk, models, adjacency):
         gnss = {st.centre_id(k): blk.cameras[k, :3] for k in range(len(blk.cameras))}
-        candidates = [p for p, kind in zip(blk.ids, blk.kind) if kind == st.TIE_POINT]
+        candidates = [p for p, kind in zip(blk.point_labels, blk.kind) if kind == TIE]
         for n_ctl in range(len(candidates)):
             control = {int(p): blk.truth([int(p)])[0] for p in candidates[:n_ctl]} or None
             try:

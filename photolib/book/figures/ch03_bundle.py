@@ -8,13 +8,13 @@ import numpy as np
 from matplotlib.colors import ListedColormap
 from matplotlib.patches import Rectangle
 
-from ...synthetic import CONTROL
-from ...triangulation_layouts import BookBlock, BundleSystem, images_per_point
+from ...synthetic import CONTROL, Block
+from ...triangulation_layouts import BundleSystem, images_per_point
 
 ROW_SHADE = {"tie": 0.45, "control": 0.9, "ground": 0.65, "gnss": 0.65, "ins": 0.65}
 
 
-def plot_layout(block: BookBlock, ax=None, counts: bool = False):
+def plot_layout(block: Block, ax=None, counts: bool = False):
     """Footprints, projection centres and points of a rebuilt block (figs. 3.10/3.13).
 
     Control points are triangles, tie points circles; each point is labelled with its book number

@@ -17,6 +17,7 @@ import numpy as np
 from matplotlib.patches import Rectangle
 
 from ... import strip_triangulation as st
+from ...synthetic import TIE, Block
 
 
 def _done(fig):
@@ -24,7 +25,7 @@ def _done(fig):
     return fig
 
 
-def block_layout(block: st.LayoutBlock, units, control=None, adjacency=None, title="", show_footprints=True):
+def block_layout(block: Block, units, control=None, adjacency=None, title="", show_footprints=True):
     """Plan of a layout block in the style of figs 3.7/3.8.
 
     Footprints of the images (thin rectangles, one colour per strip), principal points (⊕),
@@ -49,7 +50,7 @@ def block_layout(block: st.LayoutBlock, units, control=None, adjacency=None, tit
         cid = st.centre_id(k)
         if cid in pairs:
             ax.annotate(f"({pairs[cid]})", (X, Y), textcoords="offset points", xytext=(6, -12), fontsize=8)
-    for p, (X, Y, _), kind in zip(block.ids, block.points, block.kind):
+    for p, (X, Y, _), kind in zip(block.point_labels, block.points, block.kind):
         p = int(p)
         if p in control:
             n_units = sum(p in u for u in units)
@@ -57,7 +58,7 @@ def block_layout(block: st.LayoutBlock, units, control=None, adjacency=None, tit
             ax.annotate(f"[{n_units}]", (X, Y), textcoords="offset points", xytext=(6, 4), fontsize=8, color="C3")
             if p in pairs:
                 ax.annotate(f"({pairs[p]})", (X, Y), textcoords="offset points", xytext=(6, -12), fontsize=8)
-        elif kind == st.TIE_POINT:
+        elif kind == TIE:
             ax.plot(X, Y, "o", color="C0", ms=7, mfc="white")
             if p in pairs:
                 ax.annotate(f"({pairs[p]})", (X, Y), textcoords="offset points", xytext=(6, 4), fontsize=8)
