@@ -19,6 +19,15 @@ Methods:
 * ``colmap`` — COLMAP's Ceres bundle adjuster through pycolmap (a PINHOLE camera with fixed
   intrinsics, control points constant). pycolmap is a benchmark-only dependency; give the
   interpreter that has it with ``--colmap-python`` (default: this interpreter).
+* ``colmap-gn`` — the same Ceres problem run as plain Gauss–Newton: Levenberg–Marquardt with an
+  initial (and maximal) trust region of 1e16, so that the damping vanishes and every step is the
+  Gauss–Newton step; the fair per-iteration comparison with photolib.
+* ``photolib-before`` (with ``--before ROOT``) — photolib from another checkout (e.g. a clone of
+  the code before a change), run by that checkout's own benchmark worker in the same run.
+
+Blocks: ``--points-per-image 40`` (default, ~38 observations per image) and the denser block of
+issue 8, ``--dense`` (= ``--points-per-image 150``: 1000 images, ~43 000 points, ~143
+observations per image).
 
 Usage::
 
@@ -26,6 +35,8 @@ Usage::
     python benchmarks/bundle_adjustment.py --sizes 10 100 --methods photolib colmap
     python benchmarks/bundle_adjustment.py --colmap-python /path/to/venv/bin/python
     python benchmarks/bundle_adjustment.py --sizes 10 100 1000 5000 --methods photolib colmap --json out.json
+    python benchmarks/bundle_adjustment.py --sizes 1000 --dense --methods photolib colmap colmap-gn \
+        --before /tmp/engine_before --repeat 3
 
 A run that exceeds ``--timeout`` seconds is stopped and reported as a lower bound, with the
 progress it had made (function evaluations, cost) as evidence.
@@ -168,7 +179,12 @@ def run_scipy(blk, cams0, pts0):
     return cams, pts, wall, int(sol.njev), {"status": int(sol.status), "nfev": int(sol.nfev)}
 
 
-def run_colmap(blk, cams0, pts0):
+def run_colmap_gn(blk, cams0, pts0):
+    """Ceres as plain Gauss–Newton: LM whose trust region never limits the step."""
+    return run_colmap(blk, cams0, pts0, gauss_newton=True)
+
+
+def run_colmap(blk, cams0, pts0, gauss_newton=False):
     import pycolmap
     from photolib.rotation import rotation_matrix
     o = blk.observations
@@ -219,6 +235,9 @@ def run_colmap(blk, cams0, pts0):
     so.parameter_tolerance = 1e-12
     so.max_num_iterations = 100
     so.minimizer_progress_to_stdout = True
+    if gauss_newton:                        # μ = 1/radius ≈ 0: the LM step is the Gauss–Newton step
+        so.initial_trust_region_radius = 1e16
+        so.max_trust_region_radius = 1e16
     solver = os.environ.get("PHOTOLIB_BENCH_COLMAP_SOLVER", "auto")
     if solver != "auto":                    # e.g. SPARSE_SCHUR instead of COLMAP's choice by block size
         options.ceres.auto_select_solver_type = False
@@ -258,7 +277,7 @@ def worker(method: str, size: int, out: Path):
     PROGRESS = out.with_suffix(".progress")
     blk, cams0, pts0 = make_problem(size)
     base_mb = peak_mb()
-    runner = {"photolib": run_photolib, "scipy": run_scipy, "colmap": run_colmap}[method]
+    runner = {"photolib": run_photolib, "scipy": run_scipy, "colmap": run_colmap, "colmap-gn": run_colmap_gn}[method]
     cams, pts, wall, iters, extra = runner(blk, cams0, pts0)
     np.save(out.with_suffix(".npy"), cams)
     result = dict(method=method, images=blk.n_images, points=len(blk.points), observations=len(blk.observations),
@@ -282,6 +301,10 @@ def main(argv=None):
                          "sparse Schur up to 1000, iterative Schur above) or a Ceres name such as SPARSE_SCHUR")
     ap.add_argument("--points-per-image", type=int, default=POINTS_PER_IMAGE,
                     help="tie-point density of the synthetic block (points measured per image, default 40)")
+    ap.add_argument("--dense", action="store_true",
+                    help="the denser block of issue 8: --points-per-image 150 (~143 observations per image)")
+    ap.add_argument("--before", type=Path,
+                    help="another photolib checkout (e.g. a clone before a change): adds the method photolib-before")
     ap.add_argument("--json", type=Path, help="write all results to this file")
     ap.add_argument("--worker", nargs=3, metavar=("METHOD", "SIZE", "OUT"), help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
@@ -289,22 +312,33 @@ def main(argv=None):
         worker(args.worker[0], int(args.worker[1]), Path(args.worker[2]))
         return 0
 
+    if args.dense:
+        args.points_per_image = 150
+    if args.before is not None and "photolib-before" not in args.methods:
+        args.methods = ["photolib-before"] + list(args.methods)
     os.environ["PHOTOLIB_BENCH_POINTS_PER_IMAGE"] = str(args.points_per_image)   # inherited by the workers
     results = []
     load_before = os.getloadavg()
     with tempfile.TemporaryDirectory() as tmp:
         for size in args.sizes:
             for method in args.methods:
-                python = args.colmap_python if method == "colmap" else sys.executable
+                python = args.colmap_python if method.startswith("colmap") else sys.executable
+                root, script, worker_method = ROOT, __file__, method
+                if method == "photolib-before":
+                    if args.before is None:
+                        log("  photolib-before needs --before ROOT")
+                        break
+                    root = args.before.resolve()
+                    script, worker_method = str(root / "benchmarks" / "bundle_adjustment.py"), "photolib"
                 best = None
                 for rep in range(args.repeat):
                     out = Path(tmp) / f"{method}_{size}_{rep}.json"
                     log(f"[{size} images] {method} (run {rep + 1}/{args.repeat}) ...")
-                    env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""),
+                    env = dict(os.environ, PYTHONPATH=str(root) + os.pathsep + os.environ.get("PYTHONPATH", ""),
                                PHOTOLIB_BENCH_COLMAP_SOLVER=args.colmap_solver)
                     try:
-                        proc = subprocess.run([python, __file__, "--worker", method, str(size), str(out)], env=env,
-                                              stdout=sys.stderr, timeout=args.timeout)
+                        proc = subprocess.run([python, script, "--worker", worker_method, str(size), str(out)],
+                                              env=env, stdout=sys.stderr, timeout=args.timeout)
                     except subprocess.TimeoutExpired:
                         progress = out.with_suffix(".progress")
                         evidence = json.loads(progress.read_text()) if progress.exists() else {}
@@ -317,6 +351,7 @@ def main(argv=None):
                         log(f"  {method}: failed (exit code {proc.returncode})")
                         break
                     r = json.loads(out.read_text())
+                    r["method"] = method
                     r["centres"] = str(out.with_suffix(".npy"))
                     r["requested"] = size
                     if best is None or r["wall"] < best["wall"]:
@@ -358,7 +393,7 @@ def report(results):
                 diffs[r["method"]] = float(np.abs(np.load(r["centres"])[:, :3] - ref_c[:, :3]).max())
             diff = f"{diffs[r['method']]:.1e}" if r["method"] in diffs else "—"
             how = ""
-            if r["method"] == "colmap":
+            if r["method"].startswith("colmap"):
                 ex = r.get("extra", {})
                 term = ex.get("report", "").split("Termination:")[-1].strip()
                 how = f" ({ex.get('linear_solver_type_used', '?').split('.')[-1]}, {term})"
@@ -374,6 +409,21 @@ def report(results):
         def met(ok):               # the targets are set for blocks of 1000 images and more
             return ("met" if ok else "NOT met") if size >= 1000 else "target set at 1000 images"
 
+        gn = next((r for r in done if r["method"] == "colmap-gn"), None)
+        before = next((r for r in done if r["method"] == "photolib-before"), None)
+        if before is not None:
+            verdicts.append(f"{size} images: photolib after/before time ×{pl['wall'] / before['wall']:.2f} "
+                            f"(≤ 1, no regression: {'met' if pl['wall'] <= before['wall'] else 'NOT met'}); "
+                            f"{before['iterations']} → {pl['iterations']} iterations")
+        if gn is not None:
+            t = pl["wall"] / gn["wall"]
+            verdict = ("met" if t <= 1.1 else "NOT met") if size >= 1000 else "target set at 1000 images"
+            verdicts.append(f"{size} images: photolib/Ceres-as-Gauss–Newton time ×{t:.2f} (≤ 1.1: {verdict}); "
+                            f"iterations {pl['iterations']} / {gn['iterations']}")
+        if ref is not None and size < 1000:
+            t = pl["wall"] / ref["wall"]
+            verdicts.append(f"{size} images: photolib/COLMAP time ×{t:.2f} (≤ 1, no slower than COLMAP: "
+                            f"{'met' if t <= 1 else 'NOT met'})")
         if ref is not None:
             t, m = pl["wall"] / ref["wall"], pl["peak_mb"] / ref["peak_mb"]
             verdicts.append(f"{size} images: photolib/COLMAP time ×{t:.2f} (≤ 1.5: {met(t <= 1.5)}); "

@@ -36,7 +36,6 @@ accuracy, so μ (3.5.12) is in millimetres of the image and estimates the image 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from types import SimpleNamespace
 
 import numpy as np
 import scipy.linalg  # noqa: F401 — imported here so that the solver's local imports cost nothing
@@ -46,19 +45,19 @@ from scipy.sparse.csgraph import connected_components
 
 from . import _bundle_generated
 from .camera import ExteriorOrientation, InteriorOrientation, correct_distortion
-from .errors import ConvergenceError, DegenerateGeometryError, InputError
+from .errors import ConvergenceError, DegenerateGeometryError, InputError, PointBehindCameraError
 from .lsq import (BlockCorrectionEquations, GlobalBlockCorrectionEquations, block_equations_dense, block_gauss_newton,
-                  block_gauss_newton_global, global_block_equations_dense)
+                  global_block_equations_dense)
 from .rotation import check_order, rotation_angles, rotation_matrix
 from .single_image import project_to_images
 
 __all__ = ["BundleResult", "CheckPointStatistics", "bundle_adjustment", "bundle_correction_equations",
-           "check_point_statistics", "as_observations",
+           "check_point_statistics",
            # §3.6 self-calibration
            "IO_NAMES", "DISTORTION_NAMES", "CorrelationReport", "SelfCalibrationResult",
            "self_calibrating_bundle_adjustment", "self_calibration_correction_equations",
            # §3.8 rigs
-           "MOUNT_NAMES", "RigResult", "rig_image_orientation", "rig_correction_equations", "rig_bundle_adjustment",
+           "MOUNT_NAMES", "RigResult", "rig_image_orientation", "rig_bundle_adjustment",
            "rig_design_matrix",
            # §3.9 rolling shutter
            "RollingShutterResult", "rolling_shutter_project", "rolling_shutter_correction_equations",
@@ -70,7 +69,47 @@ __all__ = ["BundleResult", "CheckPointStatistics", "bundle_adjustment", "bundle_
 
 @dataclass
 class BundleResult:
-    """Adjusted block: exterior orientations, points, μ, m_j, residuals and the iteration record."""
+    """Adjusted block: exterior orientations, points, μ, m_j, residuals and the iteration record.
+
+    Attributes
+    ----------
+    cameras : ndarray (n, 6)
+        Adjusted X_S, Y_S, Z_S (m), ω, α, κ (rad).
+    points : ndarray (k, 3)
+        Adjusted points (m).
+    mu : float
+        μ (3.5.12), mm of the image.
+    dof : int
+        M − N.
+    cameras_std, points_std : ndarray or None
+        m_j (3.5.11); None when the covariance was not computed.
+    residuals : ndarray (m, 2)
+        v_x, v_y (mm, computed − measured).
+    control_residuals, gnss_residuals, ins_residuals : ndarray
+        V of weighted control (3.5.17), GNSS centres (3.5.18), INS angles (3.5.19); 0 where none.
+    iterations : int
+    history : list of IterationRecord
+    order : str
+    timings : dict
+        Seconds per stage of the solver.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.1)–(3.5.12); §1.8, eqs. (1.8.5)–(1.8.10).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> blk = synthetic.aerial_block(2, 4, points_per_image=15, sigma=0.0, seed=1)
+    >>> cams0, pts0 = blk.start_values(seed=2)
+    >>> control = {int(i): blk.points[i] for i in blk.control}
+    >>> res = bundle_adjustment(blk.observations, cams0, pts0, blk.io, control=control, order=blk.order)
+    >>> float(np.abs(res.cameras - blk.cameras).max()) < 1e-6      # noise-free block: the truth
+    True
+    >>> print(res.summary().splitlines()[0][:52])
+    Bundle adjustment (§3.5): 8 images, 37 points, 4 ite
+    """
 
     cameras: np.ndarray              # (n, 6) X_S, Y_S, Z_S, ω, α, κ
     points: np.ndarray               # (k, 3) X, Y, Z
@@ -96,8 +135,24 @@ class BundleResult:
         """√(mean of v_x² + v_y² over observations / 2) — r.m.s. per coordinate, mm."""
         return float(np.sqrt(np.mean(self.residuals ** 2)))
 
+    def summary(self) -> str:
+        """A short readable text: size, iterations, μ and the r.m.s. accuracy of the unknowns."""
+        lines = [f"Bundle adjustment (§3.5): {len(self.cameras)} images, {len(self.points)} points, "
+                 f"{self.iterations} iterations, dof {self.dof}",
+                 f"  mu = {1000 * float(self.mu):.4g} µm (r.m.s. error of unit weight, image)",
+                 f"  r.m.s. image residual = {1000 * self.rms_image_residual:.4g} µm"]
+        if self.cameras_std is not None:
+            c = np.sqrt(np.mean(self.cameras_std ** 2, axis=0))
+            lines.append(f"  r.m.s. m of the centres: {float(c[0]):.4g}, {float(c[1]):.4g}, {float(c[2]):.4g} m; "
+                         f"of the angles: {', '.join(f'{float(np.degrees(v) * 3600):.3g}' for v in c[3:])} arc-seconds")
+        return "\n".join(lines)
 
-def as_observations(observations):
+    def __repr__(self) -> str:
+        return (f"<{type(self).__name__}: {len(self.cameras)} images, {len(self.points)} points, "
+                f"mu={1000 * float(self.mu):.4g} µm, dof={self.dof}, {self.iterations} iterations>")
+
+
+def _as_observations(observations):
     """(image, point, xy) arrays from an object with those attributes, a dict, or an (m, 4) array."""
     if hasattr(observations, "image"):
         image, point, xy = observations.image, observations.point, observations.xy
@@ -120,6 +175,20 @@ def as_observations(observations):
     return image.astype(np.intp), point.astype(np.intp), xy
 
 
+_OLD_NAMES = {"control_sigma": "sigma_control", "gnss_sigma": "sigma_centre", "ins_sigma": "sigma_angles",
+              "io_sigma": "sigma_io", "weight": "weights"}
+
+
+def _renamed(legacy, func, **current):
+    """The values of renamed parameters, accepting their former spellings (``control_sigma=`` …)."""
+    for old, value in legacy.items():
+        new = _OLD_NAMES.get(old)
+        if new is None or new not in current:
+            raise InputError(f"{func}() got an unexpected keyword argument {old!r}")
+        current[new] = value
+    return tuple(current.values())
+
+
 def _stack_cameras(cameras0, order):
     if len(cameras0) and isinstance(cameras0[0], ExteriorOrientation):
         if any(c.order != order for c in cameras0):
@@ -134,26 +203,65 @@ def _stack_cameras(cameras0, order):
 
 
 def bundle_correction_equations(image, point, xy, cameras, points, io: InteriorOrientation,
-                                order: str = "kaw", weight: float = 1.0) -> BlockCorrectionEquations:
+                                order: str = "kaw", weights: float = 1.0, **legacy) -> BlockCorrectionEquations:
     """Correction equations (3.5.2) of all image observations at the approximation.
 
     Rows k: a₁…a₆ (→ ``B1``), a₇…a₉ (→ ``B2``), l_x = x₀ − f x*/z* − x (→ ``L``) and the same for y,
     from the sympy model :func:`~photolib.derivations.bundle_collinearity_model`. Raises
     :class:`DegenerateGeometryError` if a point lies behind its image (z* ≥ 0).
+
+    Parameters
+    ----------
+    image, point : int arrays (m,)
+        Image and point of every observation.
+    xy : ndarray (m, 2)
+        Measured image coordinates, mm.
+    cameras : ndarray (n, 6)
+        Approximate exterior orientations (X_S, Y_S, Z_S, ω, α, κ).
+    points : ndarray (k, 3)
+        Approximate points.
+    io : InteriorOrientation
+        f, x₀, y₀ (mm).
+    order : {"kaw", "wak"}
+        Rotation sequence.
+    weights : float or array (m, 2)
+        Weights of the image coordinates (``weight=`` is accepted as the former name).
+
+    Returns
+    -------
+    BlockCorrectionEquations
+        B1 (m, 2, 6), B2 (m, 2, 3), L (m, 2) and the weights.
+
+    Raises
+    ------
+    PointBehindCameraError
+        A point lies behind its image (z* ≥ 0); ``points`` names them.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.1)–(3.5.3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> blk = synthetic.aerial_block(2, 4, points_per_image=15, sigma=0.0, seed=1)
+    >>> cams0, pts0 = blk.start_values(seed=2)
+    >>> control = {int(i): blk.points[i] for i in blk.control}
+    >>> o = blk.observations
+    >>> eq = bundle_correction_equations(o.image, o.point, o.xy, blk.cameras, blk.points, blk.io, blk.order)
+    >>> eq.B1.shape[1:], eq.B2.shape[1:], float(np.abs(eq.L).max()) < 1e-9     # at the truth L = 0
+    ((2, 6), (2, 3), True)
     """
-    A = rotation_matrix(cameras[:, 3], cameras[:, 4], cameras[:, 5], order)
-    zstar = np.einsum("ki,ki->k", A[image][:, :, 2], points[point] - cameras[image, :3])
-    if np.any(zstar >= 0):
-        bad = np.flatnonzero(zstar >= 0)[:10]
-        raise DegenerateGeometryError(
-            f"observations {bad.tolist()}: the point is not in front of the image (z* ≥ 0)")
+    (weights,) = _renamed(legacy, "bundle_correction_equations", weights=weights)
+    _zstar_check(cameras, points, image, point, order)
     fn = getattr(_bundle_generated, f"collinearity_{order}")
     c, X = cameras[image], points[point]
     F, J = fn(c[:, 0], c[:, 1], c[:, 2], c[:, 3], c[:, 4], c[:, 5], X[:, 0], X[:, 1], X[:, 2],
               xy[:, 0], xy[:, 1], io.f, io.x0, io.y0)
     J = J.reshape(2, 9, -1).transpose(2, 0, 1)
     return BlockCorrectionEquations(frame=image, point=point, B1=J[:, :, :6], B2=J[:, :, 6:], L=F.T,
-                                    P=weight)
+                                    P=weights)
 
 
 def _per_item(sigma, n, what):
@@ -190,17 +298,34 @@ def _datum_rank(anchor_xyz, anchor_mask, angle_rows, centre, scale):
     return int(np.sum(sv > 1e-6 * max(sv[0], 1.0)))
 
 
+@dataclass
+class _Block:
+    """A validated block with its control, GNSS and INS observations (from :func:`_prepare_block`)."""
+
+    image: np.ndarray            # (m,) image index of each observation
+    point: np.ndarray            # (m,) point index of each observation
+    xy: np.ndarray               # (m, 2) measured image coordinates, mm (distortion corrected if asked)
+    cams: np.ndarray             # (n, 6) start values of the exterior orientations
+    pts: np.ndarray              # (k, 3) start values of the points (fixed control inserted)
+    n: int                       # number of images
+    k: int                       # number of points
+    free_points: np.ndarray      # (k,) False for control held fixed (3.5.3)
+    point_obs: tuple | None      # (values, weights) of weighted control (3.5.17)
+    frame_obs: tuple | None      # (values, weights) of GNSS centres / INS angles (3.5.18)/(3.5.19)
+    ctrl_idx: np.ndarray         # indices of the control points
+    ctrl_xyz: np.ndarray         # their coordinates (NaN: not controlled)
+
+
 def _prepare_block(observations, cameras0, points0, io, control, control_sigma, gnss, gnss_sigma, ins, ins_sigma,
                    sigma_image, order, correct_distortion_first=True):
     """Validate a block and assemble control, GNSS and INS observations — shared by every bundle variant.
 
-    Returns a namespace with image, point, xy, cams, pts, n, k, free_points, point_obs, frame_obs,
-    ctrl_idx, ctrl_xyz. Raises the errors documented in :func:`bundle_adjustment`.
+    Returns a :class:`_Block`. Raises the errors documented in :func:`bundle_adjustment`.
     """
     check_order(order)
     if not isinstance(io, InteriorOrientation):
         raise InputError("io must be an InteriorOrientation")
-    image, point, xy = as_observations(observations)
+    image, point, xy = _as_observations(observations)
     cams = _stack_cameras(cameras0, order)
     pts = np.array(points0, dtype=float)
     if pts.ndim != 2 or pts.shape[1] != 3 or not np.all(np.isfinite(pts)):
@@ -237,11 +362,11 @@ def _prepare_block(observations, cameras0, points0, io, control, control_sigma, 
         if control_sigma is None:
             if not np.all(np.isfinite(ctrl_xyz)):
                 raise InputError("fixed control points need all three coordinates (NaN found); "
-                                 "give control_sigma to use planimetric or height control")
+                                 "give sigma_control to use planimetric or height control")
             free_points[ctrl_idx] = False
             pts[ctrl_idx] = ctrl_xyz
         else:
-            s = _per_item(control_sigma, ctrl_idx.size, "control_sigma")
+            s = _per_item(control_sigma, ctrl_idx.size, "sigma_control")
             values = np.full((k, 3), np.nan)
             weights = np.zeros((k, 3))
             values[ctrl_idx] = ctrl_xyz
@@ -260,7 +385,7 @@ def _prepare_block(observations, cameras0, points0, io, control, control_sigma, 
         data = np.asarray(data, dtype=float)
         if data.shape != (n, 3):
             raise InputError(f"{what}: expected an ({n}, 3) array with NaN rows where missing, got {data.shape}")
-        s = _per_item(sig, n, f"{what}_sigma")
+        s = _per_item(sig, n, {"gnss": "sigma_centre", "ins": "sigma_angles"}[what])
         frame_values[:, cols] = data
         frame_weights[:, cols] = np.where(np.isfinite(data), (sigma_image / s) ** 2, 0.0)
     frame_obs = (frame_values, frame_weights) if np.any(frame_weights > 0) else None
@@ -306,15 +431,15 @@ def _prepare_block(observations, cameras0, points0, io, control, control_sigma, 
             "scale); add control points (at least 3 not on one line, e.g. XYZ points in the block corners) "
             "or GNSS centres")
 
-    return SimpleNamespace(image=image, point=point, xy=xy, cams=cams, pts=pts, n=n, k=k, free_points=free_points,
-                           point_obs=point_obs, frame_obs=frame_obs, ctrl_idx=ctrl_idx, ctrl_xyz=ctrl_xyz)
+    return _Block(image=image, point=point, xy=xy, cams=cams, pts=pts, n=n, k=k, free_points=free_points,
+                  point_obs=point_obs, frame_obs=frame_obs, ctrl_idx=ctrl_idx, ctrl_xyz=ctrl_xyz)
 
 
 def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, *, control=None,
-                      control_sigma=None, gnss=None, gnss_sigma=0.05, ins=None, ins_sigma=np.radians(0.005),
+                      sigma_control=None, gnss=None, sigma_centre=0.05, ins=None, sigma_angles=np.radians(0.005),
                       sigma_image: float = 0.005, order: str = "kaw", max_iter: int = 30,
                       tol_centre: float = 1e-5, tol_angle: float = 1e-9, tol_point: float = 1e-5,
-                      covariance: bool | str = "auto", dense_limit: int = 0, progress=None) -> BundleResult:
+                      covariance: bool | str = "auto", dense_limit: int = 0, progress=None, **legacy) -> BundleResult:
     """Adjust a block of frame images by the bundle method, §3.5.
 
     Parameters
@@ -366,16 +491,37 @@ def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, 
         Malformed input; a free point measured in only one image; an image with fewer than three points.
     DegenerateGeometryError
         Too little control to fix the datum (position, rotation, scale); a block that falls apart
-        into groups of images without common points; points behind an image.
+        into groups of images without common points.
+    PointBehindCameraError
+        The start values put points behind an image that measures them (``points`` names them).
     ConvergenceError
-        The iteration diverged or did not converge in ``max_iter`` steps.
+        The iteration diverged (also: points moved behind an image during it) or did not converge
+        in ``max_iter`` steps.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.1)–(3.5.12); §1.8, eqs. (1.8.5)–(1.8.10). Weighted control, GNSS and INS: eqs. (3.5.17)–(3.5.19); reduction (3.5.13)–(3.5.16).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> blk = synthetic.aerial_block(2, 4, points_per_image=15, sigma=0.0, seed=1)
+    >>> cams0, pts0 = blk.start_values(seed=2)
+    >>> control = {int(i): blk.points[i] for i in blk.control}
+    >>> res = bundle_adjustment(blk.observations, cams0, pts0, blk.io, control=control, order=blk.order)
+    >>> res.iterations, float(np.abs(res.points - blk.points).max()) < 1e-6
+    (4, True)
     """
-    b = _prepare_block(observations, cameras0, points0, io, control, control_sigma, gnss, gnss_sigma, ins, ins_sigma,
-                       sigma_image, order)
+    sigma_control, sigma_centre, sigma_angles = _renamed(
+        legacy, "bundle_adjustment", sigma_control=sigma_control, sigma_centre=sigma_centre, sigma_angles=sigma_angles)
+    b = _prepare_block(observations, cameras0, points0, io, control, sigma_control, gnss, sigma_centre, ins,
+                       sigma_angles, sigma_image, order)
     image, point, xy, cams, pts, n, k = b.image, b.point, b.xy, b.cams, b.pts, b.n, b.k
     free_points, point_obs, frame_obs = b.free_points, b.point_obs, b.frame_obs
 
     use_cov = (6 * n <= 3000) if covariance == "auto" else bool(covariance)
+    _zstar_check(cams, pts, image, point, order)           # bad start values: PointBehindCameraError, as such
 
     def linearize(frames, points):
         return bundle_correction_equations(image, point, xy, frames, points, io, order)
@@ -385,10 +531,8 @@ def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, 
                                  free_points=free_points, tol_frames=[tol_centre] * 3 + [tol_angle] * 3,
                                  tol_points=tol_point, max_iter=max_iter, covariance=use_cov, dense_limit=dense_limit,
                                  progress=progress)
-    except DegenerateGeometryError as exc:
-        if "not in front" in str(exc):
-            raise ConvergenceError(f"the iteration diverged: {exc}") from exc
-        raise
+    except PointBehindCameraError as exc:
+        raise ConvergenceError(f"the iteration diverged: {exc}") from exc
     zeros3 = np.zeros((n, 3))
     fr = adj.frame_residuals if frame_obs is not None else np.zeros((n, 6))
     return BundleResult(cameras=adj.frames, points=adj.points, mu=adj.mu, dof=adj.dof,
@@ -402,7 +546,28 @@ def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, 
 
 @dataclass(frozen=True)
 class CheckPointStatistics:
-    """Errors of adjusted points against independent (check) coordinates."""
+    """Errors of adjusted points against independent (check) coordinates.
+
+    Attributes
+    ----------
+    n : int
+        Number of check points.
+    mean, rms, max_abs : ndarray (3,)
+        Mean, r.m.s. and largest absolute error in X, Y, Z (m).
+    predicted : ndarray (3,) or None
+        r.m.s. of the a-posteriori m_j (3.5.11) at the same points.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eq. (3.5.11); §3.7 (accuracy checks on independent points).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> s = CheckPointStatistics(2, np.zeros(3), np.full(3, 0.1), np.full(3, 0.15), np.full(3, 0.1))
+    >>> s.ratio
+    array([1., 1., 1.])
+    """
 
     n: int
     mean: np.ndarray          # (3,) mean error X, Y, Z (m)
@@ -420,13 +585,57 @@ def check_point_statistics(result: BundleResult, true_points, indices) -> CheckP
     """Compare adjusted points ``indices`` with their true (check) coordinates ``true_points``.
 
     ``true_points`` is either the (len(indices), 3) check coordinates or the full (k, 3) array.
+
+    Parameters
+    ----------
+    result : BundleResult
+        An adjusted block.
+    true_points : array_like
+        The (len(indices), 3) check coordinates or the full (k, 3) array.
+    indices : int array
+        The check points.
+
+    Returns
+    -------
+    CheckPointStatistics
+
+    Raises
+    ------
+    InputError
+        Shapes that do not match, no check points, indices outside the block, NaN.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eq. (3.5.11); §3.7.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> blk = synthetic.aerial_block(2, 4, points_per_image=15, sigma=0.0, seed=1)
+    >>> cams0, pts0 = blk.start_values(seed=2)
+    >>> control = {int(i): blk.points[i] for i in blk.control}
+    >>> res = bundle_adjustment(blk.observations, cams0, pts0, blk.io, control=control, order=blk.order)
+    >>> stats = check_point_statistics(res, blk.points, blk.check)
+    >>> stats.n == len(blk.check), bool(np.all(stats.rms < 1e-6))
+    (True, True)
     """
-    idx = np.asarray(indices, dtype=np.intp)
-    truth = np.asarray(true_points, dtype=float)
+    if not hasattr(result, "points") or not hasattr(result, "points_std"):
+        raise InputError("result must be a BundleResult")
+    try:
+        idx = np.asarray(indices).reshape(-1)
+        truth = np.asarray(true_points, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"check points: indices and coordinates must be numbers: {exc}") from None
+    if idx.size == 0 or not np.issubdtype(idx.dtype, np.integer) or idx.min() < 0 or idx.max() >= len(result.points):
+        raise InputError(f"check points: give integer indices of adjusted points (0…{len(result.points) - 1})")
+    idx = idx.astype(np.intp)
     if truth.shape == result.points.shape:
         truth = truth[idx]
-    if truth.shape != (idx.size, 3) or idx.size == 0:
+    if truth.shape != (idx.size, 3):
         raise InputError("check points: give indices and their (c, 3) true coordinates")
+    if not np.all(np.isfinite(truth)):
+        raise InputError("check points: the true coordinates contain NaN or inf")
     err = result.points[idx] - truth
     pred = None if result.points_std is None else np.sqrt(np.mean(result.points_std[idx] ** 2, axis=0))
     return CheckPointStatistics(n=idx.size, mean=err.mean(axis=0), rms=np.sqrt(np.mean(err ** 2, axis=0)),
@@ -451,12 +660,64 @@ def _count_arg(value, what):
 
 
 def count_bundle_unknowns(n_images: int, n_points: int) -> int:
-    """N = 6n + 3k of (3.5.20): six EO per image, three coordinates per determined point."""
+    """N = 6n + 3k of (3.5.20): six EO per image, three coordinates per determined point.
+
+    Parameters
+    ----------
+    n_images, n_points : int
+        Images and determined points.
+
+    Returns
+    -------
+    int
+        N = 6n + 3k.
+
+    Raises
+    ------
+    InputError
+        A negative or non-integer count, an unknown option.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eq. (3.5.20).
+
+    Examples
+    --------
+    >>> count_bundle_unknowns(4, 10)
+    54
+    """
     return 6 * _count_arg(n_images, "n_images") + 3 * _count_arg(n_points, "n_points")
 
 
 def count_self_calibration_unknowns(n_images: int, n_points: int, calibrate=IO_NAMES) -> int:
-    """(3.5.20) plus the block-wide unknowns of §3.6: + 5 for k₁, k₂, k₃, p₁, p₂ (the text), + 8 with f, x₀, y₀ ((3.6.3))."""
+    """(3.5.20) plus the block-wide unknowns of §3.6: + 5 for k₁, k₂, k₃, p₁, p₂ (the text), + 8 with f, x₀, y₀ ((3.6.3)).
+
+    Parameters
+    ----------
+    n_images, n_points : int
+        Images and determined points.
+    calibrate : sequence of str
+        The block-wide unknowns (names from IO_NAMES).
+
+    Returns
+    -------
+    int
+        N of (3.5.20) plus one per calibrated unknown.
+
+    Raises
+    ------
+    InputError
+        A negative or non-integer count, an unknown option.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eq. (3.5.20); §3.6, eq. (3.6.3).
+
+    Examples
+    --------
+    >>> count_self_calibration_unknowns(4, 10), count_self_calibration_unknowns(4, 10, DISTORTION_NAMES)
+    (62, 59)
+    """
     names = _check_calibrate(calibrate)
     return count_bundle_unknowns(n_images, n_points) + len(names)
 
@@ -465,6 +726,34 @@ def count_rig_unknowns(n_exposures: int, n_cameras: int, n_points: int = 0, para
     """Unknowns of a multi-camera block: N₁ = 6·n_s·n + 3k (3.8.1, ``"free"``) or N₂ = 6(n + n_s − 1) + 3k (3.8.2, ``"rig"``).
 
     n = exposures (images of one camera), n_s = cameras in the rig, k = determined points.
+
+    Parameters
+    ----------
+    n_exposures, n_cameras : int
+        Exposures and cameras of the rig.
+    n_points : int
+        Determined points.
+    parameterisation : {"rig", "free"}
+        (3.8.2) or (3.8.1).
+
+    Returns
+    -------
+    int
+        N₁ or N₂.
+
+    Raises
+    ------
+    InputError
+        A negative or non-integer count, an unknown option.
+
+    References
+    ----------
+    Chibunichev (2022), §3.8, eqs. (3.8.1), (3.8.2).
+
+    Examples
+    --------
+    >>> count_rig_unknowns(2, 2, 4, "rig"), count_rig_unknowns(2, 2, 4, "free")
+    (30, 36)
     """
     n, ns, k = (_count_arg(v, w) for v, w in ((n_exposures, "n_exposures"), (n_cameras, "n_cameras"),
                                                 (n_points, "n_points")))
@@ -478,7 +767,34 @@ def count_rig_unknowns(n_exposures: int, n_cameras: int, n_points: int = 0, para
 
 
 def count_rolling_shutter_unknowns(n_images: int, n_points: int = 0, model: str = "full") -> int:
-    """§3.9: 12 unknowns per rolling-shutter image (6 EO + 6 rates, (3.9.2)), 9 in the simplified model, + 3k."""
+    """§3.9: 12 unknowns per rolling-shutter image (6 EO + 6 rates, (3.9.2)), 9 in the simplified model, + 3k.
+
+    Parameters
+    ----------
+    n_images, n_points : int
+        Images and determined points.
+    model : {"full", "linear"}
+        12 or 9 unknowns per image.
+
+    Returns
+    -------
+    int
+        N.
+
+    Raises
+    ------
+    InputError
+        A negative or non-integer count, an unknown option.
+
+    References
+    ----------
+    Chibunichev (2022), §3.9, eqs. (3.9.1), (3.9.2).
+
+    Examples
+    --------
+    >>> count_rolling_shutter_unknowns(3, 10), count_rolling_shutter_unknowns(3, 10, "linear")
+    (66, 57)
+    """
     per = {"full": 12, "linear": 9}.get(model)
     if per is None:
         raise InputError(f"model must be 'full' (12 per image) or 'linear' (9), got {model!r}")
@@ -502,8 +818,10 @@ def _zstar_check(cameras, points, image, point, order):
     A = rotation_matrix(cameras[:, 3], cameras[:, 4], cameras[:, 5], order)
     zstar = np.einsum("ki,ki->k", A[image][:, :, 2], points[point] - cameras[image, :3])
     if np.any(zstar >= 0):
-        bad = np.flatnonzero(zstar >= 0)[:10]
-        raise DegenerateGeometryError(f"observations {bad.tolist()}: the point is not in front of the image (z* ≥ 0)")
+        bad = np.flatnonzero(zstar >= 0)
+        raise PointBehindCameraError(
+            f"observations {bad[:10].tolist()}: the point is not in front of the image (z* ≥ 0)",
+            points=np.unique(np.asarray(point)[bad]).tolist())
 
 
 def self_calibration_correction_equations(image, point, xy, cameras, points, io_values, calibrate=IO_NAMES,
@@ -513,6 +831,45 @@ def self_calibration_correction_equations(image, point, xy, cameras, points, io_
     ``io_values`` are the current f, x₀, y₀, k₁, k₂, k₃, p₁, p₂; B3 holds the columns of the
     names in ``calibrate`` (in the order of :data:`IO_NAMES`). Free terms
     l = x₀ − f x*/z* − x − Δ_x (3.6.1). Derivatives from :func:`photolib.derivations.self_calibration_model`.
+
+    Parameters
+    ----------
+    image, point, xy, cameras, points
+        As in :func:`bundle_correction_equations`.
+    io_values : array_like (8,)
+        Current f, x₀, y₀, k₁, k₂, k₃, p₁, p₂.
+    calibrate : sequence of str
+        The block-wide unknowns.
+    order : {"kaw", "wak"}
+
+    Returns
+    -------
+    GlobalBlockCorrectionEquations
+        B1 (m, 2, 6), B2 (m, 2, 3), B3 (m, 2, g), L (m, 2).
+
+    Raises
+    ------
+    InputError
+        Unknown names in ``calibrate``.
+    PointBehindCameraError
+        A point behind its image.
+
+    References
+    ----------
+    Chibunichev (2022), §3.6, eqs. (3.6.1)–(3.6.3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> blk = synthetic.aerial_block(2, 4, points_per_image=15, sigma=0.0, seed=1)
+    >>> cams0, pts0 = blk.start_values(seed=2)
+    >>> control = {int(i): blk.points[i] for i in blk.control}
+    >>> o = blk.observations
+    >>> io = [blk.io.f, blk.io.x0, blk.io.y0, 0, 0, 0, 0, 0]
+    >>> eq = self_calibration_correction_equations(o.image, o.point, o.xy, blk.cameras, blk.points, io)
+    >>> eq.B3.shape[1:], float(np.abs(eq.L).max()) < 1e-9
+    ((2, 8), True)
     """
     names = _check_calibrate(calibrate)
     _zstar_check(cameras, points, image, point, order)
@@ -533,6 +890,34 @@ class CorrelationReport:
     ``among[i, j]`` is r between unknowns i and j of ``names``; ``with_eo[i, c]`` the largest |r|
     over all images between unknown i and EO component c (X_S … κ), signed; ``with_points[i, c]``
     the same over all free points and X, Y, Z.
+
+    Attributes
+    ----------
+    names : tuple of str
+        The block-wide unknowns.
+    among : ndarray (g, g)
+        r between them.
+    with_eo, with_points : ndarray
+        Largest signed |r| with each EO component / point coordinate.
+
+    References
+    ----------
+    Chibunichev (2022), §3.6 (correlation of the calibration with the exterior orientation); §1.8, eq. (1.8.10).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> from photolib.camera import InteriorOrientation
+    >>> true_io = InteriorOrientation(f=100.0, x0=0.05, y0=-0.03)
+    >>> blk = synthetic.aerial_block(3, 4, io=true_io, strip_heights=(800, 1000, 1200), relief=150.0,
+    ...                              points_per_image=20, sigma=0.0, seed=3)
+    >>> cams0, pts0 = blk.start_values(seed=1)
+    >>> res = self_calibrating_bundle_adjustment(blk.observations, cams0, pts0, InteriorOrientation(f=99.0),
+    ...     calibrate=("f", "x0", "y0"), control={int(i): blk.points[i] for i in blk.control}, order=blk.order)
+    >>> rep = res.correlations
+    >>> rep.names, bool(np.allclose(np.diag(rep.among), 1.0))
+    (('f', 'x0', 'y0'), True)
     """
 
     names: tuple
@@ -592,7 +977,39 @@ def _correlation_report(adj, names, limit):
 
 @dataclass
 class SelfCalibrationResult(BundleResult):
-    """:class:`BundleResult` of a self-calibrating adjustment plus the recovered camera (§3.6)."""
+    """:class:`BundleResult` of a self-calibrating adjustment plus the recovered camera (§3.6).
+
+    Attributes
+    ----------
+    io : InteriorOrientation
+        The adjusted interior orientation and distortion.
+    calibrated : tuple of str
+        Names of the estimated block-wide unknowns.
+    io_std : dict
+        m_j (3.5.11) of each.
+    correlations : CorrelationReport
+        Their correlations (§3.6).
+    cameras, points, mu, ...
+        As in :class:`BundleResult`.
+
+    References
+    ----------
+    Chibunichev (2022), §3.6, eqs. (3.6.1)–(3.6.3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> from photolib.camera import InteriorOrientation
+    >>> true_io = InteriorOrientation(f=100.0, x0=0.05, y0=-0.03)
+    >>> blk = synthetic.aerial_block(3, 4, io=true_io, strip_heights=(800, 1000, 1200), relief=150.0,
+    ...                              points_per_image=20, sigma=0.0, seed=3)
+    >>> cams0, pts0 = blk.start_values(seed=1)
+    >>> res = self_calibrating_bundle_adjustment(blk.observations, cams0, pts0, InteriorOrientation(f=99.0),
+    ...     calibrate=("f", "x0", "y0"), control={int(i): blk.points[i] for i in blk.control}, order=blk.order)
+    >>> round(float(res.io.f), 6), round(float(res.io.x0), 6), round(float(res.io.y0), 6)
+    (100.0, 0.05, -0.03)
+    """
 
     io: InteriorOrientation | None = None          # adjusted interior orientation and distortion
     calibrated: tuple = ()                        # names of the estimated block-wide unknowns
@@ -601,11 +1018,11 @@ class SelfCalibrationResult(BundleResult):
 
 
 def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: InteriorOrientation, *,
-                                       calibrate=IO_NAMES, io_sigma=None, control=None, control_sigma=None,
-                                       gnss=None, gnss_sigma=0.05, ins=None, ins_sigma=np.radians(0.005),
+                                       calibrate=IO_NAMES, sigma_io=None, control=None, sigma_control=None,
+                                       gnss=None, sigma_centre=0.05, ins=None, sigma_angles=np.radians(0.005),
                                        sigma_image: float = 0.005, order: str = "kaw", max_iter: int = 30,
                                        tol_centre: float = 1e-5, tol_angle: float = 1e-9, tol_point: float = 1e-5,
-                                       correlation_limit: float = 0.9) -> SelfCalibrationResult:
+                                       correlation_limit: float = 0.9, **legacy) -> SelfCalibrationResult:
     """Bundle adjustment with self-calibration, §3.6: (3.6.1)–(3.6.3).
 
     The interior orientation f, x₀, y₀ and the distortion coefficients k₁, k₂, k₃, p₁, p₂ of
@@ -634,26 +1051,53 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
         Besides the cases of :func:`bundle_adjustment`: the block cannot separate a block-wide
         unknown from the others — e.g. f from the heights Z_S of flat terrain seen in nadir images
         (a change of f is then exactly a change of every flying height) — with the unknowns named.
+
+    Returns
+    -------
+    SelfCalibrationResult
+
+    References
+    ----------
+    Chibunichev (2022), §3.6, eqs. (3.6.1)–(3.6.3); §3.5, eqs. (3.5.9)–(3.5.16).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> from photolib.camera import InteriorOrientation
+    >>> true_io = InteriorOrientation(f=100.0, x0=0.05, y0=-0.03)
+    >>> blk = synthetic.aerial_block(3, 4, io=true_io, strip_heights=(800, 1000, 1200), relief=150.0,
+    ...                              points_per_image=20, sigma=0.0, seed=3)
+    >>> cams0, pts0 = blk.start_values(seed=1)
+    >>> res = self_calibrating_bundle_adjustment(blk.observations, cams0, pts0, InteriorOrientation(f=99.0),
+    ...     calibrate=("f", "x0", "y0"), control={int(i): blk.points[i] for i in blk.control}, order=blk.order)
+    >>> round(float(res.io.f), 6), sorted(res.io_std)
+    (100.0, ['f', 'x0', 'y0'])
     """
+    sigma_io, sigma_control, sigma_centre, sigma_angles = _renamed(
+        legacy, "self_calibrating_bundle_adjustment", sigma_io=sigma_io, sigma_control=sigma_control,
+        sigma_centre=sigma_centre, sigma_angles=sigma_angles)
     names = _check_calibrate(calibrate)
     if not isinstance(io0, InteriorOrientation):
         raise InputError("io0 must be an InteriorOrientation (start values of the calibration)")
     if not 0 < correlation_limit < 1:
         raise InputError("correlation_limit must lie in (0, 1)")
-    b = _prepare_block(observations, cameras0, points0, io0, control, control_sigma, gnss, gnss_sigma, ins,
-                       ins_sigma, sigma_image, order, correct_distortion_first=False)
+    b = _prepare_block(observations, cameras0, points0, io0, control, sigma_control, gnss, sigma_centre, ins,
+                       sigma_angles, sigma_image, order, correct_distortion_first=False)
     full = _io_vector(io0)
     cols = [IO_NAMES.index(nm) for nm in names]
     g0 = full[cols]
     gobs = None
-    if io_sigma:
+    if sigma_io:
         vals, wts = np.full(len(names), np.nan), np.zeros(len(names))
-        for nm, sg in dict(io_sigma).items():
+        for nm, sg in dict(sigma_io).items():
             if nm not in names or not sg > 0:
-                raise InputError(f"io_sigma: {nm!r} must be a calibrated unknown with a positive σ")
+                raise InputError(f"sigma_io: {nm!r} must be a calibrated unknown with a positive σ")
             vals[names.index(nm)] = g0[names.index(nm)]
             wts[names.index(nm)] = (sigma_image / sg) ** 2
         gobs = (vals, wts)
+
+    _zstar_check(b.cams, b.pts, b.image, b.point, order)  # bad start values: PointBehindCameraError, as such
 
     def linearize(frames, points, glob):
         v = full.copy()
@@ -663,15 +1107,13 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
     tol_g = np.array([1e-7 if nm in ("f", "x0", "y0") else 1e-6 * (0.1 ** (2 * (IO_NAMES.index(nm) - 2)))
                       if nm.startswith("k") else 1e-10 for nm in names])
     try:
-        adj = block_gauss_newton_global(linearize, b.cams, b.pts, g0, frame_observations=b.frame_obs,
+        adj = block_gauss_newton(linearize, b.cams, b.pts, g0, frame_observations=b.frame_obs,
                                         point_observations=b.point_obs, global_observations=gobs,
                                         free_points=b.free_points, tol_frames=[tol_centre] * 3 + [tol_angle] * 3,
                                         tol_points=tol_point, tol_globals=tol_g, max_iter=max_iter, covariance=True,
                                         global_names=names, frame_names=EO_NAMES)
-    except DegenerateGeometryError as exc:
-        if "not in front" in str(exc):
-            raise ConvergenceError(f"the iteration diverged: {exc}") from exc
-        raise
+    except PointBehindCameraError as exc:
+        raise ConvergenceError(f"the iteration diverged: {exc}") from exc
     v = full.copy()
     v[cols] = adj.globals
     io = InteriorOrientation(*v)
@@ -693,12 +1135,48 @@ def rig_image_orientation(exposure_eo, mount, order: str = "kaw") -> np.ndarray:
 
     S₂ = S₁ + A₁B (3.8.5), C₂ = A₁A₂′ (3.8.8); the angles of C₂ by (1.3.3)/(1.3.6). Arrays of
     shape (..., 6) broadcast.
+
+    Parameters
+    ----------
+    exposure_eo : array_like (..., 6)
+        EO of the reference camera.
+    mount : array_like (..., 6)
+        Mounting elements B_X, B_Y, B_Z (m, reference-camera frame), ω′, α′, κ′ (rad).
+    order : {"kaw", "wak"}
+
+    Returns
+    -------
+    ndarray (..., 6)
+        EO of the rig camera.
+
+    Raises
+    ------
+    InputError
+        Shapes other than (..., 6); NaN.
+
+    References
+    ----------
+    Chibunichev (2022), §3.8, eqs. (3.8.5), (3.8.8); §1.3, eqs. (1.3.3), (1.3.6).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> eo = np.array([100.0, 200.0, 1000.0, 0.01, -0.02, 0.3])
+    >>> bool(np.allclose(rig_image_orientation(eo, np.zeros(6)), eo))        # no offset, no rotation
+    True
+    >>> rig_image_orientation(np.zeros(6), [1.0, 2.0, 3.0, 0, 0, 0])[:3]       # A₁ = E: S₂ = S₁ + B
+    array([1., 2., 3.])
     """
     check_order(order)
-    e = np.asarray(exposure_eo, dtype=float)
-    mnt = np.asarray(mount, dtype=float)
-    if e.shape[-1] != 6 or mnt.shape[-1] != 6:
+    try:
+        e = np.asarray(exposure_eo, dtype=float)
+        mnt = np.asarray(mount, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"exposure_eo and mount must be numbers: {exc}") from None
+    if e.ndim == 0 or mnt.ndim == 0 or e.shape[-1] != 6 or mnt.shape[-1] != 6:
         raise InputError("exposure_eo and mount must end in 6 values")
+    if not (np.all(np.isfinite(e)) and np.all(np.isfinite(mnt))):
+        raise InputError("exposure_eo and mount contain NaN or inf")
     A1 = rotation_matrix(e[..., 3], e[..., 4], e[..., 5], order)
     A2 = rotation_matrix(mnt[..., 3], mnt[..., 4], mnt[..., 5], order)
     S2 = e[..., :3] + np.einsum("...ij,...j->...i", A1, mnt[..., :3] * np.ones_like(e[..., :3]))
@@ -723,7 +1201,7 @@ def _rig_layout(exposure_of_image, camera_of_image):
     return e, c, n_exp, n_cam, ref
 
 
-def rig_correction_equations(image, point, xy, exposure_of_image, camera_of_image, exposures, mounts, points,
+def _rig_correction_equations(image, point, xy, exposure_of_image, camera_of_image, exposures, mounts, points,
                              ios, order: str = "kaw") -> GlobalBlockCorrectionEquations:
     """Correction equations (3.8.14) (reference camera) and (3.8.15) (other cameras) of a rig block.
 
@@ -766,7 +1244,38 @@ def rig_correction_equations(image, point, xy, exposure_of_image, camera_of_imag
 
 @dataclass
 class RigResult:
-    """Adjusted rig block (§3.8): reference EO per exposure, mounting elements, points, accuracy."""
+    """Adjusted rig block (§3.8): reference EO per exposure, mounting elements, points, accuracy.
+
+    Attributes
+    ----------
+    exposures : ndarray (n, 6)
+        EO of the reference camera per exposure.
+    mounts : ndarray (n_s − 1, 6)
+        Mounting elements of the other cameras.
+    points, mu, dof, residuals, iterations, order
+        As in :class:`BundleResult`.
+    exposures_std, mounts_std, points_std : ndarray
+        m_j (3.5.11).
+    mount_correlation : ndarray
+        Correlations of the mounting elements.
+    n_unknowns : int
+        N₂ of (3.8.2).
+
+    References
+    ----------
+    Chibunichev (2022), §3.8, eqs. (3.8.2)–(3.8.15).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> rb = synthetic.rig_block(sigma=0.0, seed=0)
+    >>> res = rig_bundle_adjustment(rb.observations, rb.exposure_of_image, rb.camera_of_image, rb.exposures,
+    ...                             rb.mounts, rb.points, rb.ios, control={int(i): rb.points[i] for i in rb.control},
+    ...                             order=rb.order)
+    >>> res.mounts.shape, float(np.abs(res.mounts - rb.mounts).max()) < 1e-6
+    ((4, 6), True)
+    """
 
     exposures: np.ndarray            # (n, 6) EO of the reference camera per exposure
     mounts: np.ndarray               # (n_s − 1, 6) B_X, B_Y, B_Z (m, reference-camera frame), ω′, α′, κ′
@@ -796,9 +1305,9 @@ def _ios_per_camera(ios, n_cam):
 
 
 def rig_bundle_adjustment(observations, exposure_of_image, camera_of_image, exposures0, mounts0, points0, ios, *,
-                          control=None, control_sigma=None, gnss=None, gnss_sigma=0.05, sigma_image: float = 0.005,
+                          control=None, sigma_control=None, gnss=None, sigma_centre=0.05, sigma_image: float = 0.005,
                           order: str = "kaw", max_iter: int = 30, tol_centre: float = 1e-5, tol_angle: float = 1e-9,
-                          tol_point: float = 1e-5) -> RigResult:
+                          tol_point: float = 1e-5, **legacy) -> RigResult:
     """Bundle adjustment of a multi-camera rig with constant mounting elements, §3.8 (3.8.2)–(3.8.15).
 
     Unknowns: the EO of the reference camera (camera 0, e.g. the nadir camera) per exposure, the 6
@@ -817,7 +1326,37 @@ def rig_bundle_adjustment(observations, exposure_of_image, camera_of_image, expo
         Known interior orientation (distortion corrected first).
     gnss : (n, 3), optional
         GNSS centres of the reference camera per exposure (NaN rows where missing).
+
+    Returns
+    -------
+    RigResult
+
+    Raises
+    ------
+    InputError
+        Malformed layout or approximations; an exposure without a reference-camera image.
+    DegenerateGeometryError
+        Datum defect; mounting elements not separable from the exposures.
+    ConvergenceError
+        Divergence or no convergence.
+
+    References
+    ----------
+    Chibunichev (2022), §3.8, eqs. (3.8.2)–(3.8.15).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> rb = synthetic.rig_block(sigma=0.0, seed=0)
+    >>> res = rig_bundle_adjustment(rb.observations, rb.exposure_of_image, rb.camera_of_image, rb.exposures,
+    ...                             rb.mounts, rb.points, rb.ios, control={int(i): rb.points[i] for i in rb.control},
+    ...                             order=rb.order)
+    >>> res.n_unknowns == count_rig_unknowns(len(rb.exposures), 5, len(rb.points) - len(rb.control))
+    True
     """
+    sigma_control, sigma_centre = _renamed(legacy, "rig_bundle_adjustment", sigma_control=sigma_control,
+                                           sigma_centre=sigma_centre)
     check_order(order)
     e_img, c_img, n_exp, n_cam, ref = _rig_layout(exposure_of_image, camera_of_image)
     if np.any(ref < 0):
@@ -838,7 +1377,7 @@ def rig_bundle_adjustment(observations, exposure_of_image, camera_of_image, expo
         gnss_img = np.full((e_img.size, 3), np.nan)
         gnss_img[ref] = gn
     # validation with the per-image orientation; distortion of each camera corrected here
-    b = _prepare_block(observations, cams_img, points0, ios[0], control, control_sigma, gnss_img, gnss_sigma, None,
+    b = _prepare_block(observations, cams_img, points0, ios[0], control, sigma_control, gnss_img, sigma_centre, None,
                        np.radians(0.005), sigma_image, order, correct_distortion_first=False)
     xy = b.xy.copy()
     for c in range(n_cam):
@@ -850,21 +1389,19 @@ def rig_bundle_adjustment(observations, exposure_of_image, camera_of_image, expo
         frame_obs = (b.frame_obs[0][ref], b.frame_obs[1][ref])
 
     def linearize(frames, points, glob):
-        return rig_correction_equations(b.image, b.point, xy, e_img, c_img, frames, glob.reshape(-1, 6), points,
+        return _rig_correction_equations(b.image, b.point, xy, e_img, c_img, frames, glob.reshape(-1, 6), points,
                                         ios, order)
 
     mount_names = [f"{nm} (camera {c})" for c in range(1, n_cam) for nm in MOUNT_NAMES]
     try:
-        adj = block_gauss_newton_global(linearize, exp0, b.pts, mnt0.ravel(), frame_observations=frame_obs,
+        adj = block_gauss_newton(linearize, exp0, b.pts, mnt0.ravel(), frame_observations=frame_obs,
                                         point_observations=b.point_obs, free_points=b.free_points,
                                         tol_frames=[tol_centre] * 3 + [tol_angle] * 3, tol_points=tol_point,
                                         tol_globals=np.tile([tol_centre] * 3 + [tol_angle] * 3, n_cam - 1),
                                         max_iter=max_iter, covariance=True, global_names=mount_names,
                                         frame_names=EO_NAMES)
-    except DegenerateGeometryError as exc:
-        if "not in front" in str(exc):
-            raise ConvergenceError(f"the iteration diverged: {exc}") from exc
-        raise
+    except PointBehindCameraError as exc:
+        raise ConvergenceError(f"the iteration diverged: {exc}") from exc
     s = np.sqrt(np.diag(adj.Q3)) if adj.Q3.size else np.zeros(0)
     corr = adj.Q3 / np.outer(s, s) if s.size else np.zeros((0, 0))
     n_unk = 6 * n_exp + adj.globals.size + 3 * int(b.free_points.sum())
@@ -880,14 +1417,50 @@ def rig_design_matrix(observations, exposure_of_image, camera_of_image, exposure
 
     ``"rig"``: columns = EO per exposure | mounting elements | free points (fig. 3.18);
     ``"free"``: columns = EO per image | free points (fig. 3.11, (3.8.1)). Returns (A, L).
+
+    Parameters
+    ----------
+    observations, exposure_of_image, camera_of_image, exposures, mounts, points, ios
+        As in :func:`rig_bundle_adjustment` (values at which to linearise).
+    free_points : bool array, optional
+        Points that are unknowns (default: all).
+    parameterisation : {"rig", "free"}
+        Column layout of fig. 3.18 or fig. 3.11.
+    order : {"kaw", "wak"}
+
+    Returns
+    -------
+    A : ndarray
+        The dense correction-equation matrix.
+    L : ndarray
+        The free terms.
+
+    Raises
+    ------
+    InputError
+        Malformed input or an unknown parameterisation.
+
+    References
+    ----------
+    Chibunichev (2022), §3.8, eqs. (3.8.1), (3.8.2), (3.8.14), (3.8.15); figs. 3.11, 3.18.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> rb = synthetic.rig_block(sigma=0.0, seed=0)
+    >>> A, L = rig_design_matrix(rb.observations, rb.exposure_of_image, rb.camera_of_image, rb.exposures,
+    ...                          rb.mounts, rb.points, rb.ios, order=rb.order)
+    >>> A.shape[1] == count_rig_unknowns(len(rb.exposures), 5, len(rb.points)), float(np.abs(L).max()) < 1e-9
+    (True, True)
     """
-    image, point, xy = as_observations(observations)
+    image, point, xy = _as_observations(observations)
     e_img, c_img, n_exp, n_cam, _ = _rig_layout(exposure_of_image, camera_of_image)
     ios = _ios_per_camera(ios, n_cam)
     exposures, points = np.asarray(exposures, dtype=float), np.asarray(points, dtype=float)
     mounts = np.asarray(mounts, dtype=float).reshape(-1, 6)
     if parameterisation == "rig":
-        eq = rig_correction_equations(image, point, xy, e_img, c_img, exposures, points=points, mounts=mounts,
+        eq = _rig_correction_equations(image, point, xy, e_img, c_img, exposures, points=points, mounts=mounts,
                                       ios=ios, order=order)
         B, L, _ = global_block_equations_dense(eq, n_exp, points.shape[0], free_points)
     elif parameterisation == "free":
@@ -948,6 +1521,51 @@ def rolling_shutter_project(eo0, rates, XYZ, io: InteriorOrientation, order: str
         Stop when every |Δx| < tol (mm); raise after ``max_iter`` iterations.
     return_iterations : bool
         Also return the number of iterations used.
+
+    Parameters
+    ----------
+    eo0 : array_like (6,) or (n, 6)
+        EO at the line x = 0 (one or one per image).
+    rates : array_like (6,) or (n, 6) or None
+        k₁ … k₆ per mm of x (None: a frame camera).
+    XYZ : array_like (k, 3) or (3,)
+        Object points.
+    io : InteriorOrientation
+    order : {"kaw", "wak"}
+    image : int array (k,), optional
+        The image of each point (needed with several EO).
+    tol, max_iter
+        Convergence of the fixed-point iteration (mm, steps).
+    return_iterations : bool
+        Also return the number of iterations.
+
+    Returns
+    -------
+    xy : ndarray (k, 2)
+        Image coordinates, mm (and the iteration count if asked).
+
+    Raises
+    ------
+    InputError
+        Malformed input.
+    PointBehindCameraError
+        A point behind the image line.
+    ConvergenceError
+        The iteration does not contract (rates far too large).
+
+    References
+    ----------
+    Chibunichev (2022), §3.9, eqs. (3.9.1), (3.9.2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> blk = synthetic.aerial_block(1, 3, f=8.8, frame_size=13.2, flying_height=100.0, sigma=0.0, seed=4)
+    >>> o = blk.observations
+    >>> xy = rolling_shutter_project(blk.cameras, None, blk.points[o.point], blk.io, blk.order, image=o.image)
+    >>> bool(np.allclose(xy, blk.xy_true, atol=1e-10))          # zero rates: the frame projection
+    True
     """
     check_order(order)
     if not isinstance(io, InteriorOrientation):
@@ -968,8 +1586,9 @@ def rolling_shutter_project(eo0, rates, XYZ, io: InteriorOrientation, order: str
         e = cams[idx] + rt[idx] * x[:, None]                 # the orientation at the time of line x (3.9.2)
         xy, z_star = project_to_images(e, each, X, io, order)
         if np.any(z_star >= 0):
-            raise DegenerateGeometryError(
-                f"points {np.flatnonzero(z_star >= 0)[:10].tolist()} are not in front of the image line (z* ≥ 0)")
+            raise PointBehindCameraError(
+                f"points {np.flatnonzero(z_star >= 0)[:10].tolist()} are not in front of the image line (z* ≥ 0)",
+                points=np.flatnonzero(z_star >= 0).tolist())
         step = np.abs(xy[:, 0] - x)
         x = xy[:, 0]
         if not np.all(np.isfinite(x)):
@@ -990,6 +1609,44 @@ def rolling_shutter_correction_equations(image, point, xy, frames, points, io: I
     ``frames`` rows are (X_S0, Y_S0, Z_S0, ω₀, α₀, κ₀, k₁, …, k₆) or the first 9 of them. The
     measured x of each observation fixes its line (3.9.2). Derivatives from
     :func:`photolib.derivations.rolling_shutter_model`.
+
+    Parameters
+    ----------
+    image, point, xy
+        As in :func:`bundle_correction_equations`.
+    frames : ndarray (n, 12) or (n, 9)
+        EO at x = 0 and the rates.
+    points : ndarray (k, 3)
+    io : InteriorOrientation
+    order : {"kaw", "wak"}
+    model : {"full", "linear"}
+
+    Returns
+    -------
+    BlockCorrectionEquations
+        B1 (m, 2, 12 or 9), B2 (m, 2, 3), L (m, 2).
+
+    Raises
+    ------
+    InputError
+        An unknown model.
+    PointBehindCameraError
+        A point behind its image.
+
+    References
+    ----------
+    Chibunichev (2022), §3.9, eqs. (3.9.1), (3.9.2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> blk = synthetic.aerial_block(1, 3, f=8.8, frame_size=13.2, flying_height=100.0, sigma=0.0, seed=4)
+    >>> o = blk.observations
+    >>> frames = np.hstack([blk.cameras, np.zeros((blk.n_images, 6))])
+    >>> eq = rolling_shutter_correction_equations(o.image, o.point, blk.xy_true, frames, blk.points, blk.io, blk.order)
+    >>> eq.B1.shape[1:], float(np.abs(eq.L).max()) < 1e-9
+    ((2, 12), True)
     """
     q = {"full": 12, "linear": 9}.get(model)
     if q is None:
@@ -1007,7 +1664,37 @@ def rolling_shutter_correction_equations(image, point, xy, frames, points, io: I
 
 @dataclass
 class RollingShutterResult:
-    """Adjusted rolling-shutter block (§3.9)."""
+    """Adjusted rolling-shutter block (§3.9).
+
+    Attributes
+    ----------
+    cameras : ndarray (n, 6)
+        EO at the line x = 0.
+    rates : ndarray (n, 6)
+        k₁ … k₆ (zeros for the angular rates in the linear model).
+    points, mu, dof, residuals, iterations
+        As in :class:`BundleResult`.
+    cameras_std, rates_std, points_std : ndarray or None
+        m_j (3.5.11).
+    model : str
+    n_unknowns : int
+
+    References
+    ----------
+    Chibunichev (2022), §3.9, eqs. (3.9.1), (3.9.2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> rb = synthetic.rolling_shutter_block(sigma=0.0, model="linear")
+    >>> b = rb.block
+    >>> cams0, pts0 = b.start_values(seed=1)
+    >>> res = rolling_shutter_bundle_adjustment(rb.observations, cams0, pts0, b.io, model="linear",
+    ...                                         control={int(i): b.points[i] for i in b.control}, order=b.order)
+    >>> bool(np.allclose(res.rates, rb.rates, atol=1e-8)), res.model
+    (True, 'linear')
+    """
 
     cameras: np.ndarray          # (n, 6) EO at the line x = 0
     rates: np.ndarray            # (n, 6) k₁ … k₆ (zeros for the angular rates in the linear model)
@@ -1024,19 +1711,61 @@ class RollingShutterResult:
 
 
 def rolling_shutter_bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, *, rates0=None,
-                                      model: str = "full", control=None, control_sigma=None, gnss=None,
-                                      gnss_sigma=0.05, sigma_image: float = 0.005, order: str = "kaw",
-                                      max_iter: int = 30, covariance: bool = True) -> RollingShutterResult:
+                                      model: str = "full", control=None, sigma_control=None, gnss=None,
+                                      sigma_centre=0.05, sigma_image: float = 0.005, order: str = "kaw",
+                                      max_iter: int = 30, covariance: bool = True, **legacy) -> RollingShutterResult:
     """Bundle adjustment of rolling-shutter images, §3.9: (3.9.1) with (3.9.2).
 
     Per image 12 unknowns (EO at the line x = 0 and the six rates k₁…k₆) or, with
     ``model="linear"``, 9 (the angles held constant over the readout). GNSS centres, if given,
     observe X_S0, Y_S0, Z_S0. Other parameters as in :func:`bundle_adjustment`.
+
+    Parameters
+    ----------
+    observations, cameras0, points0, io, control, sigma_control, gnss, sigma_centre, sigma_image, order, max_iter
+        As in :func:`bundle_adjustment` (``cameras0``: the EO at the line x = 0).
+    rates0 : (n, 6) array, optional
+        Start values of k₁ … k₆ (zeros if omitted).
+    model : {"full", "linear"}
+        12 or 9 unknowns per image.
+    covariance : bool
+        Compute m_j of all unknowns.
+
+    Returns
+    -------
+    RollingShutterResult
+
+    Raises
+    ------
+    InputError
+        Malformed input; too few points per image for the model.
+    DegenerateGeometryError
+        Datum defect, undetermined points.
+    ConvergenceError
+        Divergence or no convergence.
+
+    References
+    ----------
+    Chibunichev (2022), §3.9, eqs. (3.9.1), (3.9.2); §3.5, eqs. (3.5.9)–(3.5.16).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib import synthetic
+    >>> rb = synthetic.rolling_shutter_block(sigma=0.0, model="linear")
+    >>> b = rb.block
+    >>> cams0, pts0 = b.start_values(seed=1)
+    >>> res = rolling_shutter_bundle_adjustment(rb.observations, cams0, pts0, b.io, model="linear",
+    ...                                         control={int(i): b.points[i] for i in b.control}, order=b.order)
+    >>> bool(np.allclose(res.cameras, b.cameras, atol=1e-6))
+    True
     """
+    sigma_control, sigma_centre = _renamed(legacy, "rolling_shutter_bundle_adjustment", sigma_control=sigma_control,
+                                           sigma_centre=sigma_centre)
     q = {"full": 12, "linear": 9}.get(model)
     if q is None:
         raise InputError(f"model must be 'full' (12 unknowns per image) or 'linear' (9), got {model!r}")
-    b = _prepare_block(observations, cameras0, points0, io, control, control_sigma, gnss, gnss_sigma, None,
+    b = _prepare_block(observations, cameras0, points0, io, control, sigma_control, gnss, sigma_centre, None,
                        np.radians(0.005), sigma_image, order)
     cams, rt = _rs_frames(b.cams, rates0, 0)
     frames0 = np.hstack([cams, rt])[:, :q]
@@ -1058,10 +1787,8 @@ def rolling_shutter_bundle_adjustment(observations, cameras0, points0, io: Inter
         adj = block_gauss_newton(linearize, frames0, b.pts, frame_observations=frame_obs,
                                  point_observations=b.point_obs, free_points=b.free_points, tol_frames=tol[:q],
                                  tol_points=1e-5, max_iter=max_iter, covariance=covariance)
-    except DegenerateGeometryError as exc:
-        if "not in front" in str(exc):
-            raise ConvergenceError(f"the iteration diverged: {exc}") from exc
-        raise
+    except PointBehindCameraError as exc:
+        raise ConvergenceError(f"the iteration diverged: {exc}") from exc
     full = np.zeros((b.n, 12))
     full[:, :q] = adj.frames
     std = None

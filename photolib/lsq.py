@@ -1,4 +1,4 @@
-"""The one least-squares engine — Chapter 1, §1.8, equations (1.8.5)–(1.8.10).
+"""The one least-squares engine — Chapter 1, §1.8, eqs. (1.8.5)–(1.8.10); Chapter 3, §3.5–§3.9.
 
 Every adjustment of the book is solved the same way. The model is linearised at the current
 approximation into correction equations
@@ -18,24 +18,68 @@ a-posteriori accuracy
     m_j = μ·√Q_jj                                 (1.8.8)
     r_ij = Q_ij / √(Q_ii·Q_jj)                    (1.8.10)
 
-:func:`solve_normal_equations` is one linear step; :func:`gauss_newton` iterates it over a
-``linearize(x) -> (B, L)`` callable supplied by each photogrammetric problem.
+and, where the design matrix is at hand, the redundancy numbers r_i = 1 − (B·Q·BᵀP)_ii
+(:func:`redundancy_numbers`).
+
+There is **one** Gauss–Newton loop (``_iterate``) with two pluggable linear solvers:
+
+* dense — :func:`solve_normal_equations`, for every problem of a handful of unknowns
+  (:func:`gauss_newton`: resection, relative orientation, DLT, ...);
+* block-sparse — :func:`solve_block_normal_equations`, for bundle blocks (§3.5): the points are
+  eliminated by (3.5.16) with 3×3 block inverses, the reduced system of the image unknowns is
+  factorised by a band Cholesky; block-wide ("global") unknowns — self-calibration (§3.6), rig
+  mounting elements (§3.8) — join the reduced system (:func:`block_gauss_newton`).
+
+Both give one result type, :class:`Adjustment`. Weights are spelled ``weights`` (a vector of
+p_i = 1/m_i² or a matrix P); the sign convention is B·δ + L = V, δ = −Q·BᵀPL.
 """
 
 from __future__ import annotations
 
 import functools
+import time
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
 import numpy as np
+from threadpoolctl import ThreadpoolController
 
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
+
+__all__ = ["Adjustment", "AdjustmentView", "IterationRecord", "BlockCorrectionEquations",
+           "GlobalBlockCorrectionEquations", "BlockSolution", "gauss_newton", "block_gauss_newton",
+           "solve_normal_equations", "solve_block_normal_equations", "solve_partitioned_normal_equations",
+           "accuracy", "redundancy_numbers", "point_weights", "block_equations_dense",
+           "global_block_equations_dense"]
+
+_REF_18 = "Chibunichev (2022), §1.8, eqs. (1.8.5)–(1.8.10)"
 
 
 @dataclass
 class IterationRecord:
-    """One step of the iteration: the approximation used, the correction found, and VᵀPV."""
+    """One step of the iteration: the approximation used, the correction found, and VᵀPV.
+
+    Attributes
+    ----------
+    iteration : int
+        1 for the first step.
+    x : ndarray
+        The approximation the step was linearised at (empty for block adjustments).
+    delta : ndarray
+        The corrections δ (block adjustments: max |δ| of the images, points[, globals]).
+    vtpv : float
+        VᵀPV of the free terms at ``x`` (1.8.9).
+
+    References
+    ----------
+    Chibunichev (2022), §1.8, eqs. (1.8.5)–(1.8.7).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> IterationRecord(1, np.zeros(2), np.array([0.5, -0.1]), 2.0).vtpv
+    2.0
+    """
 
     iteration: int
     x: np.ndarray
@@ -43,30 +87,139 @@ class IterationRecord:
     vtpv: float
 
 
-@dataclass
+@dataclass(repr=False)
 class Adjustment:
-    """Result of a least-squares adjustment with its a-posteriori accuracy (1.8.8)–(1.8.10)."""
+    """Result of a least-squares adjustment with its a-posteriori accuracy (1.8.8)–(1.8.10).
 
-    x: np.ndarray                 # adjusted unknowns
-    residuals: np.ndarray         # V = B·δ + L at the solution
-    mu: float                     # μ, r.m.s. error of unit weight (1.8.9)
-    Q: np.ndarray                 # cofactor matrix N⁻¹
-    std: np.ndarray               # m_j = μ√Q_jj (1.8.8)
-    corr: np.ndarray              # r_ij (1.8.10)
-    dof: int                      # m − n, the number of redundant observations
+    The one result type of the engine: :func:`gauss_newton` fills the dense fields (``Q``,
+    ``std``, ``corr``, ``names``), :func:`block_gauss_newton` the block fields (``frames``,
+    ``points``, ``globals``, cofactor blocks ``Q1``…``Q23``, ``timings``).
+
+    Attributes
+    ----------
+    x : ndarray
+        Adjusted unknowns (block adjustments: frames, free and fixed points, globals, flattened).
+    residuals : ndarray
+        V at the solution (block adjustments: (m, r) of the image observations).
+    mu : float
+        μ, r.m.s. error of unit weight (1.8.9) / (3.5.12).
+    Q : ndarray or None
+        Cofactor matrix N⁻¹ (dense adjustments).
+    std : ndarray or None
+        m_j = μ√Q_jj (1.8.8).
+    corr : ndarray or None
+        Correlation matrix r_ij (1.8.10).
+    dof : int
+        m − n, the number of redundant observations.
+    iterations : int
+        Steps taken.
+    converged : bool
+        Always True for a returned result (non-convergence raises).
+    history : list of IterationRecord
+        One record per step.
+    names : tuple of str
+        Names of the unknowns (dense adjustments).
+    frames, points, globals : ndarray or None
+        Block adjustments: (n, q) image unknowns, (k, 3) points, (g,) block-wide unknowns.
+    frame_residuals, point_residuals, global_residuals : ndarray or None
+        V of the direct observations of those unknowns ((3.5.17)–(3.5.19)); zeros where none.
+    frames_std, points_std, globals_std : ndarray or None
+        m_j (3.5.11) of each group (when the covariance was computed).
+    Q1, Q2, Q3, Q13, Q23 : ndarray or None
+        Cofactor blocks: per image (n, q, q), per point (k, 3, 3), globals (g, g), image × global
+        (n, q, g), point × global (k, 3, g).
+    timings : dict
+        Seconds spent per stage (block adjustments).
+
+    References
+    ----------
+    Chibunichev (2022), §1.8, eqs. (1.8.5)–(1.8.10); §3.5, eqs. (3.5.9)–(3.5.12).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t, y = np.array([0., 1., 2., 3.]), np.array([1.1, 2.9, 5.2, 6.8])
+    >>> adj = gauss_newton(lambda x: (np.column_stack([np.ones(4), t]), x[0] + x[1] * t - y),
+    ...                    [0., 0.], names=("a", "b"))
+    >>> print(adj.summary())
+    Least-squares adjustment (§1.8): 2 iterations, 4 observations, 2 unknowns, dof 2
+      mu = 0.202485 (r.m.s. error of unit weight)
+      a = 1.09 ± 0.169411
+      b = 1.94 ± 0.0905539
+    """
+
+    x: np.ndarray
+    residuals: np.ndarray
+    mu: float
+    Q: np.ndarray | None
+    std: np.ndarray | None
+    corr: np.ndarray | None
+    dof: int
     iterations: int
-    converged: bool
+    converged: bool = True
     history: list = field(default_factory=list)
     names: tuple = ()
+    frames: np.ndarray | None = None
+    points: np.ndarray | None = None
+    globals: np.ndarray | None = None
+    frame_residuals: np.ndarray | None = None
+    point_residuals: np.ndarray | None = None
+    global_residuals: np.ndarray | None = None
+    frames_std: np.ndarray | None = None
+    points_std: np.ndarray | None = None
+    globals_std: np.ndarray | None = None
+    Q1: np.ndarray | None = None
+    Q2: np.ndarray | None = None
+    Q3: np.ndarray | None = None
+    Q13: np.ndarray | None = None
+    Q23: np.ndarray | None = None
+    timings: dict = field(default_factory=dict)
+    design: tuple | None = None       # (B, weights) at the solution, dense adjustments only
 
     @property
     def covariance(self) -> np.ndarray:
-        """μ²·Q, the estimated covariance matrix of the unknowns."""
+        """μ²·Q, the estimated covariance matrix of the unknowns (dense adjustments)."""
+        if self.Q is None:
+            raise InputError("no full cofactor matrix Q: a block adjustment keeps only its blocks Q1…Q23")
         return self.mu ** 2 * self.Q
+
+    @property
+    def redundancy(self) -> np.ndarray:
+        """Redundancy numbers r_i = 1 − (B·Q·BᵀP)_ii of the observations (:func:`redundancy_numbers`)."""
+        if self.design is None or self.Q is None:
+            raise InputError("redundancy numbers need the design matrix: only dense adjustments keep it")
+        B, P = self.design
+        return redundancy_numbers(B, self.Q, P)
 
     def as_dict(self) -> dict:
         """Unknowns by name (needs ``names``)."""
         return dict(zip(self.names, self.x))
+
+    def summary(self) -> str:
+        """A short readable text: iterations, μ, dof and every named unknown with ± m_j."""
+        n_obs = int(np.size(self.residuals)) if self.frames is None else None
+        if self.frames is None:
+            head = (f"Least-squares adjustment (§1.8): {self.iterations} iterations, {n_obs} observations, "
+                    f"{self.x.size} unknowns, dof {self.dof}")
+        else:
+            g = 0 if self.globals is None else self.globals.size
+            head = (f"Block adjustment (§3.5): {self.iterations} iterations, {len(self.frames)} images, "
+                    f"{len(self.points)} points, {g} block-wide unknowns, dof {self.dof}")
+        lines = [head, f"  mu = {float(self.mu):.6g} (r.m.s. error of unit weight)"]
+        if self.frames is None:
+            names = self.names or tuple(f"x{i}" for i in range(self.x.size))
+            std = self.std if self.std is not None else np.full(self.x.size, np.nan)
+            lines += [f"  {nm} = {float(v):.6g} ± {float(s):.6g}" for nm, v, s in zip(names, self.x, std)]
+        elif self.globals is not None and self.globals.size:
+            names = self.names or tuple(f"global {i}" for i in range(self.globals.size))
+            std = self.globals_std if self.globals_std is not None else np.full(self.globals.size, np.nan)
+            lines += [f"  {nm} = {float(v):.6g} ± {float(s):.6g}" for nm, v, s in zip(names, self.globals, std)]
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        kind = "dense" if self.frames is None else "block"
+        return (f"<Adjustment ({kind}): {self.x.size} unknowns, mu={float(self.mu):.6g}, dof={self.dof}, "
+                f"{self.iterations} iterations>")
 
 
 class AdjustmentView:
@@ -74,6 +227,26 @@ class AdjustmentView:
 
     Gives them the a-posteriori accuracy of (1.8.8)–(1.8.10) and the iteration record under
     the same names as :class:`Adjustment`.
+
+    Attributes
+    ----------
+    mu, std, corr, Q, iterations, history
+        Those of ``self.adjustment``.
+
+    References
+    ----------
+    Chibunichev (2022), §1.8, eqs. (1.8.8)–(1.8.10).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> class Fit(AdjustmentView):
+    ...     def __init__(self, adjustment):
+    ...         self.adjustment = adjustment
+    >>> t, y = np.array([0., 1., 2., 3.]), np.array([1.1, 2.9, 5.2, 6.8])
+    >>> fit = Fit(gauss_newton(lambda x: (np.column_stack([np.ones(4), t]), x[0] + x[1] * t - y), [0., 0.]))
+    >>> fit.iterations, round(fit.mu, 4)
+    (2, 0.2025)
     """
 
     @property
@@ -109,7 +282,10 @@ class AdjustmentView:
 def _as_weights(P, m: int):
     if P is None:
         return None
-    P = np.asarray(P, dtype=float)
+    try:
+        P = np.asarray(P, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"weights must be numbers: {exc}") from None
     if P.ndim == 1:
         if P.shape != (m,):
             raise InputError(f"weights: expected {m} values, got {P.shape[0]}")
@@ -133,14 +309,41 @@ def _weighted(P, M):
 
 
 def point_weights(weights, n: int):
-    """Weights of 2-D point observations as one value per coordinate, (2n,) ordered x₁, y₁, x₂, …
+    """Weights of 2-D point observations as one value per coordinate, ordered x₁, y₁, x₂, …
 
-    ``weights`` may be None (unit weights), one per point (n,), one per coordinate (n, 2), or
-    already flat (2n,). All must be finite and positive (p_i = 1/m_i², (1.8.6)).
+    Parameters
+    ----------
+    weights : None or array_like
+        None (unit weights), one per point (n,), one per coordinate (n, 2), or already flat (2n,).
+        All must be finite and positive (p_i = 1/m_i², (1.8.6)).
+    n : int
+        Number of points.
+
+    Returns
+    -------
+    ndarray (2n,) or None
+        The weights per coordinate; None for unit weights.
+
+    Raises
+    ------
+    InputError
+        A wrong shape, NaN/inf, or a weight ≤ 0.
+
+    References
+    ----------
+    Chibunichev (2022), §1.8, eq. (1.8.6) (P = diag(1/m_i²)).
+
+    Examples
+    --------
+    >>> point_weights([1.0, 4.0], 2)
+    array([1., 1., 4., 4.])
     """
     if weights is None:
         return None
-    w = np.asarray(weights, dtype=float)
+    try:
+        w = np.asarray(weights, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"weights must be numbers: {exc}") from None
     if w.shape == (n,):
         w = np.repeat(w, 2)
     elif w.shape == (n, 2):
@@ -152,21 +355,73 @@ def point_weights(weights, n: int):
     return w
 
 
-def weighted_square_sum(V, P=None) -> float:
+def _weighted_square_sum(V, P=None) -> float:
     """VᵀPV."""
     V = np.asarray(V, dtype=float)
     return float(V @ _weighted(P, V))
 
 
-def solve_normal_equations(B, L, P=None, names: Sequence[str] = (), rcond: float = 1e-12):
+weighted_square_sum = _weighted_square_sum      # the former public name
+
+
+def _floats(value, what):
+    try:
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{what} must be numbers: {exc}") from None
+
+
+def _as_matrix(value, what, ndim):
+    a = _floats(value, what)
+    if a.ndim != ndim:
+        raise InputError(f"{what} must have {ndim} dimension(s), got shape {a.shape}")
+    return a
+
+
+def solve_normal_equations(B, L, weights=None, names: Sequence[str] = (), rcond: float = 1e-12):
     """One linear least-squares step: δ = −(BᵀPB)⁻¹BᵀPL, (1.8.6)–(1.8.7).
 
-    ``P`` is a vector of weights p_i = 1/m_i² (a diagonal P) or a full matrix; ``None`` means
-    unit weights. Returns ``(delta, Q)``. A singular or numerically rank-deficient N raises
-    :class:`DegenerateGeometryError` naming the unknowns that are not determined.
+    Parameters
+    ----------
+    B : array_like (m, n)
+        Partial derivatives of the correction equations B·δ + L = V (1.8.5).
+    L : array_like (m,)
+        Free terms (model value at the approximation minus the measurement).
+    weights : array_like (m,) or (m, m), optional
+        Weights p_i = 1/m_i² (a diagonal P) or a full matrix P; None means unit weights.
+        (Positional use as the third argument is kept from the former name ``P``.)
+    names : sequence of str, optional
+        Names of the unknowns, used in the message of a singular N.
+    rcond : float
+        Smallest acceptable eigenvalue ratio of N scaled to unit diagonal.
+
+    Returns
+    -------
+    delta : ndarray (n,)
+        The corrections δ = −Q·BᵀPL.
+    Q : ndarray (n, n)
+        The cofactor matrix N⁻¹.
+
+    Raises
+    ------
+    InputError
+        Wrong shapes, NaN/inf, fewer equations than unknowns, non-positive weights.
+    DegenerateGeometryError
+        N singular or numerically rank-deficient; the message names the unknowns involved.
+
+    References
+    ----------
+    Chibunichev (2022), §1.8, eqs. (1.8.5)–(1.8.7).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> B = np.array([[1.0, 0.0], [1.0, 1.0], [1.0, 2.0]])
+    >>> delta, Q = solve_normal_equations(B, np.array([-1.0, -2.0, -3.0]))
+    >>> delta.round(6)
+    array([1., 1.])
     """
-    B = np.asarray(B, dtype=float)
-    L = np.asarray(L, dtype=float)
+    B, L = _floats(B, "B"), _floats(L, "L")
     if B.ndim != 2 or L.ndim != 1 or B.shape[0] != L.shape[0]:
         raise InputError(f"correction equations: B must be m×n and L of length m, got {B.shape} and {L.shape}")
     m, n = B.shape
@@ -174,7 +429,9 @@ def solve_normal_equations(B, L, P=None, names: Sequence[str] = (), rcond: float
         raise InputError(f"{m} correction equations cannot determine {n} unknowns")
     if not (np.all(np.isfinite(B)) and np.all(np.isfinite(L))):
         raise InputError("the correction equations contain NaN or inf")
-    P = _as_weights(P, m)
+    if n == 0:
+        raise InputError("no unknowns: B has no columns")
+    P = _as_weights(weights, m)
     PB = _weighted(P, B)
     N = B.T @ PB
     LN = PB.T @ L
@@ -198,34 +455,225 @@ def solve_normal_equations(B, L, P=None, names: Sequence[str] = (), rcond: float
     return delta, Q
 
 
-def accuracy(V, Q, P=None, dof: int | None = None):
-    """μ, m_j and r_ij of (1.8.8)–(1.8.10) from the residuals ``V`` and cofactors ``Q``."""
-    V = np.asarray(V, dtype=float)
+def accuracy(V, Q, weights=None, dof: int | None = None):
+    """μ, m_j and r_ij of (1.8.8)–(1.8.10) from the residuals ``V`` and cofactors ``Q``.
+
+    Parameters
+    ----------
+    V : array_like (m,)
+        Residuals of the observations.
+    Q : array_like (n, n)
+        Cofactor matrix N⁻¹.
+    weights : array_like (m,) or (m, m), optional
+        Weights (unit if omitted).
+    dof : int, optional
+        Redundancy m − n if not given.
+
+    Returns
+    -------
+    mu : float
+        μ = √(VᵀPV/dof) (1.8.9); NaN when dof ≤ 0.
+    std : ndarray (n,)
+        m_j = μ√Q_jj (1.8.8).
+    corr : ndarray (n, n)
+        r_ij = Q_ij/√(Q_ii Q_jj) (1.8.10).
+
+    Raises
+    ------
+    InputError
+        Shapes that do not match, NaN/inf.
+
+    References
+    ----------
+    Chibunichev (2022), §1.8, eqs. (1.8.8)–(1.8.10).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> mu, std, corr = accuracy(np.array([0.1, -0.1, 0.1, -0.1]), np.diag([1.0, 4.0]))
+    >>> round(mu, 4), std.round(4)
+    (0.1414, array([0.1414, 0.2828]))
+    """
+    V = _as_matrix(V, "V", 1)
+    Q = _as_matrix(Q, "Q", 2)
     n = Q.shape[0]
+    if Q.shape != (n, n):
+        raise InputError(f"Q must be square, got {Q.shape}")
+    if not (np.all(np.isfinite(V)) and np.all(np.isfinite(Q))):
+        raise InputError("residuals or cofactors contain NaN or inf")
     dof = V.shape[0] - n if dof is None else dof
-    vtpv = weighted_square_sum(V, None if P is None else np.asarray(P, dtype=float))
+    vtpv = _weighted_square_sum(V, _as_weights(weights, V.shape[0]))
     mu = float(np.sqrt(vtpv / dof)) if dof > 0 else float("nan")
     q = np.sqrt(np.diag(Q))
     return mu, mu * q, Q / np.outer(q, q)
 
 
-def gauss_newton(linearize: Callable[[np.ndarray], tuple], x0, P=None, *, tol=1e-10,
+def redundancy_numbers(B, Q, weights=None):
+    """Redundancy numbers r_i = 1 − (B·Q·BᵀP)_ii of the observations.
+
+    r_i is the share of observation i in the redundancy: Σ r_i = m − n, 0 ≤ r_i ≤ 1; an
+    observation with r_i ≈ 0 is not checked by the others (a blunder in it cannot show in its
+    residual), and the standardised residual of data snooping is w_i = v_i / (μ·√(r_i / p_i))
+    (unit weights: v_i / (μ√r_i)). With a full weight matrix (B Q Bᵀ P)_ii = Σ_j (BQBᵀ)_ij P_ji.
+
+    Parameters
+    ----------
+    B : array_like (m, n)
+        Design matrix of the correction equations (1.8.5) at the solution.
+    Q : array_like (n, n)
+        Cofactor matrix N⁻¹ = (BᵀPB)⁻¹.
+    weights : array_like (m,) or (m, m), optional
+        Weights P (unit if omitted).
+
+    Returns
+    -------
+    ndarray (m,)
+        r_i for every observation.
+
+    Raises
+    ------
+    InputError
+        Shapes that do not match, NaN/inf, non-positive weights.
+
+    References
+    ----------
+    Chibunichev (2022), §1.8, eqs. (1.8.6)–(1.8.7) (Q = N⁻¹); §2.7 (blunder detection by the
+    residuals of relative orientation).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> B = np.ones((4, 1))                  # four direct measurements of one quantity
+    >>> redundancy_numbers(B, np.array([[0.25]]))
+    array([0.75, 0.75, 0.75, 0.75])
+    """
+    B = _as_matrix(B, "B", 2)
+    Q = _as_matrix(Q, "Q", 2)
+    m, n = B.shape
+    if Q.shape != (n, n):
+        raise InputError(f"Q must be {n}×{n} for a B of {n} columns, got {Q.shape}")
+    if not (np.all(np.isfinite(B)) and np.all(np.isfinite(Q))):
+        raise InputError("B or Q contain NaN or inf")
+    P = _as_weights(weights, m)
+    BQ = B @ Q
+    if P is None:
+        h = np.einsum("ij,ij->i", BQ, B)
+    elif P.ndim == 1:
+        h = np.einsum("ij,ij->i", BQ, B) * P
+    else:
+        h = np.einsum("ij,jk,ki->i", BQ, B.T, P)
+    return 1.0 - h
+
+
+# --- the one Gauss–Newton loop ------------------------------------------------------------------
+def _iterate(solver, state, max_iter: int, progress):
+    """Gauss–Newton: linearise, solve the normal equations, correct, until δ is negligible (§1.8).
+
+    ``solver`` supplies the problem-specific parts: ``linearize(state) -> eq``,
+    ``step(eq, state, iteration, history) -> (delta, vtpv)`` (the linear solver),
+    ``record(iteration, state, delta, vtpv) -> IterationRecord``, ``update(state, delta)``,
+    ``finite(state)``, ``converged(delta)``, ``no_convergence(max_iter, delta) -> str``,
+    ``finish(state, history) -> Adjustment`` and ``watch_divergence`` (four growths of VᵀPV in a
+    row raise :class:`ConvergenceError`).
+    """
+    history, growth = [], 0
+    delta = None
+    for iteration in range(1, max_iter + 1):
+        eq = solver.linearize(state)
+        delta, vtpv = solver.step(eq, state, iteration, history)
+        record = solver.record(iteration, state, delta, vtpv)
+        history.append(record)
+        if progress is not None:
+            progress(record)
+        if solver.watch_divergence:
+            if len(history) > 1 and vtpv > history[-2].vtpv * (1 + 1e-9):
+                growth += 1
+                if growth >= 4:
+                    raise ConvergenceError(f"diverging: VᵀPV grew in {growth} consecutive iterations", history)
+            else:
+                growth = 0
+        state = solver.update(state, delta)
+        if not solver.finite(state):
+            raise ConvergenceError(f"the iteration produced NaN/inf at step {iteration}", history)
+        if solver.converged(delta):
+            break
+    else:
+        raise ConvergenceError(solver.no_convergence(max_iter, delta), history)
+    return solver.finish(state, history)
+
+
+class _DenseSolver:
+    """The dense linear solver of :func:`gauss_newton`: x is one vector, δ from (1.8.7)."""
+
+    watch_divergence = False
+
+    def __init__(self, linearize, weights, names, dof, tol):
+        self._linearize, self.P, self.names, self.dof, self.tol = linearize, weights, tuple(names), dof, tol
+
+    def linearize(self, x):
+        return self._linearize(x)
+
+    def step(self, eq, x, iteration, history):
+        B, L = eq
+        delta, _ = solve_normal_equations(B, L, self.P, self.names)
+        return delta, _weighted_square_sum(L, _as_weights(self.P, len(L)))
+
+    @staticmethod
+    def record(iteration, x, delta, vtpv):
+        return IterationRecord(iteration, x.copy(), delta, vtpv)
+
+    @staticmethod
+    def update(x, delta):
+        return x + delta
+
+    @staticmethod
+    def finite(x):
+        return bool(np.all(np.isfinite(x)))
+
+    def converged(self, delta):
+        return bool(np.all(np.abs(delta) < self.tol))
+
+    @staticmethod
+    def no_convergence(max_iter, delta):
+        return f"no convergence in {max_iter} iterations: last corrections {np.array2string(delta, precision=3)}"
+
+    def finish(self, x, history):
+        B, L = self.linearize(x)
+        delta, Q = solve_normal_equations(B, L, self.P, self.names)
+        V = B @ delta + L
+        P = _as_weights(self.P, len(L))
+        mu, std, corr = accuracy(V, Q, P, self.dof)
+        return Adjustment(x=x + delta, residuals=V, mu=mu, Q=Q, std=std, corr=corr,
+                          dof=V.shape[0] - x.shape[0] if self.dof is None else self.dof,
+                          iterations=len(history), converged=True, history=history, names=self.names,
+                          design=(np.asarray(B, dtype=float), P))
+
+
+def gauss_newton(linearize: Callable[[np.ndarray], tuple], x0, weights=None, *, tol=1e-10,
                  max_iter: int = 50, names: Sequence[str] = (), dof: int | None = None,
-                 progress: Callable[[IterationRecord], None] | None = None) -> Adjustment:
+                 progress: Callable[[IterationRecord], None] | None = None, **legacy) -> Adjustment:
     """Iterate the correction equations of a nonlinear problem to convergence (§1.8).
+
+    The dense solver of the one Gauss–Newton loop: each step solves (1.8.6)–(1.8.7) by
+    :func:`solve_normal_equations`; after convergence the problem is linearised once more and
+    the last (negligible) correction is applied, so that the residuals V = B·δ + L, μ (1.8.9),
+    m_j (1.8.8) and r_ij (1.8.10) belong to the returned estimate.
 
     Parameters
     ----------
     linearize : callable
         ``linearize(x) -> (B, L)``: the partial derivatives and free terms at ``x``, (1.8.5).
-    x0 : array
+    x0 : array_like (n,)
         Approximate values of the unknowns.
-    P : array, optional
-        Weights of the observations (vector or matrix); unit weights if omitted.
-    tol : float or array
+    weights : array_like (m,) or (m, m), optional
+        Weights of the observations (vector p_i = 1/m_i² or matrix P); unit weights if omitted.
+        May be given positionally (third argument); ``P=`` is accepted as the former keyword.
+    tol : float or array_like (n,)
         Convergence when every |δ_j| < tol_j (give an array for unknowns of different units).
     max_iter : int
         Iterations allowed before :class:`ConvergenceError` is raised.
+    names : sequence of str, optional
+        Names of the unknowns (messages, :meth:`Adjustment.summary`).
     dof : int, optional
         Degrees of freedom for μ if not m − n (e.g. when equations are dependent).
     progress : callable, optional
@@ -234,38 +682,55 @@ def gauss_newton(linearize: Callable[[np.ndarray], tuple], x0, P=None, *, tol=1e
     Returns
     -------
     Adjustment
-        Estimate, residuals, μ, Q, m_j, r_ij, iteration history.
+        Estimate, residuals, μ, Q, m_j, r_ij, iteration history, dof, redundancy numbers.
+
+    Raises
+    ------
+    InputError
+        NaN/inf or a wrong shape in the start values, equations or weights; m < n.
+    DegenerateGeometryError
+        A singular normal matrix (the unknowns of the weak combination are named).
+    ConvergenceError
+        NaN/inf during the iteration or no convergence in ``max_iter`` steps (with the history).
+
+    References
+    ----------
+    Chibunichev (2022), §1.8, eqs. (1.8.5)–(1.8.10).
+
+    Examples
+    --------
+    A straight line y = a + b·t through four points:
+
+    >>> import numpy as np
+    >>> t, y = np.array([0., 1., 2., 3.]), np.array([1.1, 2.9, 5.2, 6.8])
+    >>> adj = gauss_newton(lambda x: (np.column_stack([np.ones(4), t]), x[0] + x[1] * t - y),
+    ...                    [0., 0.], names=("a", "b"))
+    >>> print(f"a = {adj.x[0]:.3f}, b = {adj.x[1]:.3f}, dof = {adj.dof}")
+    a = 1.090, b = 1.940, dof = 2
+    >>> round(float(adj.redundancy.sum()), 6)        # Σ r_i = m − n
+    2.0
     """
-    x = np.array(x0, dtype=float)
+    if legacy:
+        if set(legacy) != {"P"} or weights is not None:
+            raise InputError(f"gauss_newton: unexpected arguments {sorted(legacy)}")
+        weights = legacy["P"]
+    if not callable(linearize):
+        raise InputError("linearize must be a callable x -> (B, L)")
+    try:
+        x = np.array(x0, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"the approximate values must be numbers: {exc}") from None
     if x.ndim != 1:
         raise InputError("the unknowns must be a 1-D vector")
     if not np.all(np.isfinite(x)):
         raise InputError("the approximate values contain NaN or inf")
-    tol = np.broadcast_to(np.asarray(tol, dtype=float), x.shape)
-    history = []
-    for iteration in range(1, max_iter + 1):
-        B, L = linearize(x)
-        delta, Q = solve_normal_equations(B, L, P, names)
-        record = IterationRecord(iteration, x.copy(), delta, weighted_square_sum(L, _as_weights(P, len(L))))
-        history.append(record)
-        if progress is not None:
-            progress(record)
-        x = x + delta
-        if not np.all(np.isfinite(x)):
-            raise ConvergenceError(f"the iteration produced NaN/inf at step {iteration}", history)
-        if np.all(np.abs(delta) < tol):
-            break
-    else:
-        raise ConvergenceError(
-            f"no convergence in {max_iter} iterations: last corrections {np.array2string(delta, precision=3)}",
-            history)
-    B, L = linearize(x)
-    delta, Q = solve_normal_equations(B, L, P, names)
-    V = B @ delta + L
-    mu, std, corr = accuracy(V, Q, _as_weights(P, len(L)), dof)
-    return Adjustment(x=x + delta, residuals=V, mu=mu, Q=Q, std=std, corr=corr,
-                      dof=V.shape[0] - x.shape[0] if dof is None else dof,
-                      iterations=len(history), converged=True, history=history, names=tuple(names))
+    if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
+        raise InputError(f"max_iter must be a positive integer, got {max_iter!r}")
+    try:
+        tol = np.broadcast_to(np.asarray(tol, dtype=float), x.shape)
+    except ValueError:
+        raise InputError(f"tol: one value or one per unknown ({x.size}), got shape {np.shape(tol)}") from None
+    return _iterate(_DenseSolver(linearize, weights, names, dof, tol), x, max_iter, progress)
 
 
 # --- Chapter 3, §3.5: block-structured normal equations and their reduction ---------------------
@@ -310,9 +775,45 @@ def solve_partitioned_normal_equations(N11, N12, N22, L1, L2, eliminate: str = "
     Returns
     -------
     delta1, delta2 : arrays
+
+    Raises
+    ------
+    InputError
+        An unknown ``eliminate``; blocks whose shapes do not fit together; NaN/inf.
+    DegenerateGeometryError
+        A singular block.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.13)–(3.5.16) (the sign of (3.5.15) corrected, see above).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> N = np.array([[4.0, 1.0, 0.5], [1.0, 3.0, 0.2], [0.5, 0.2, 2.0]])
+    >>> L = np.array([1.0, 2.0, 3.0])
+    >>> d1, d2 = solve_partitioned_normal_equations(N[:1, :1], N[:1, 1:], N[1:, 1:], L[:1], L[1:])
+    >>> bool(np.allclose(np.concatenate([d1, d2]), np.linalg.solve(N, L)))
+    True
     """
-    N11, N12, N22 = (np.atleast_2d(np.asarray(M, dtype=float)) for M in (N11, N12, N22))
-    L1, L2 = np.asarray(L1, dtype=float), np.asarray(L2, dtype=float)
+    N11, N12, N22 = (np.atleast_2d(_floats(M, "N blocks")) for M in (N11, N12, N22))
+    L1, L2 = np.atleast_1d(_floats(L1, "L1")), np.atleast_1d(_floats(L2, "L2"))
+    n1, n2 = N11.shape[0], N22.shape[0]
+    if N11.shape != (n1, n1) or N22.shape != (n2, n2) or N12.shape != (n1, n2) or L1.shape != (n1,) \
+            or L2.shape != (n2,):
+        raise InputError(f"partitioned normal equations: N11 {N11.shape}, N12 {N12.shape}, N22 {N22.shape}, "
+                         f"L1 {L1.shape}, L2 {L2.shape} do not fit together")
+    if not all(np.all(np.isfinite(a)) for a in (N11, N12, N22, L1, L2)):
+        raise InputError("the partitioned normal equations contain NaN or inf")
+    if eliminate not in ("points", "eo"):
+        raise InputError(f"eliminate must be 'points' or 'eo', got {eliminate!r}")
+    try:
+        return _solve_partitioned(N11, N12, N22, L1, L2, eliminate)
+    except np.linalg.LinAlgError as exc:
+        raise DegenerateGeometryError(f"a block of the partitioned normal matrix is singular: {exc}") from None
+
+
+def _solve_partitioned(N11, N12, N22, L1, L2, eliminate):
     if eliminate == "points":
         iN22 = np.linalg.inv(N22)
         d1 = np.linalg.solve(N11 - N12 @ iN22 @ N12.T, L1 - N12 @ iN22 @ L2)      # (3.5.16)
@@ -345,6 +846,20 @@ class BlockCorrectionEquations:
         Free terms: model value at the approximation (computed − measured).
     P : array (m, r) or float
         Weights p = 1/m² of the measurements (3.5.7).
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.2)–(3.5.4), (3.5.7).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> frame, point = np.repeat([0, 1], 5), np.tile(np.arange(5), 2)
+    >>> eq = BlockCorrectionEquations(frame, point, rng.normal(size=(10, 2, 6)), rng.normal(size=(10, 2, 3)),
+    ...                               rng.normal(size=(10, 2)))
+    >>> eq.B1.shape, eq.P
+    ((10, 2, 6), 1.0)
     """
 
     frame: np.ndarray
@@ -357,13 +872,46 @@ class BlockCorrectionEquations:
 
 @dataclass
 class BlockSolution:
-    """One solved linear step of a block: corrections and (optionally) cofactor blocks."""
+    """One solved linear step of a block: corrections and (optionally) cofactor blocks.
 
-    delta1: np.ndarray                  # (n_frames, q) corrections of the image unknowns
-    delta2: np.ndarray                  # (n_points, 3) corrections of the points
-    Q1: np.ndarray | None = None        # (n_frames, q, q) diagonal blocks of N⁻¹ for the images
-    Q2: np.ndarray | None = None        # (n_points, 3, 3) diagonal blocks of N⁻¹ for the points
+    Attributes
+    ----------
+    delta1 : ndarray (n_frames, q)
+        Corrections of the image unknowns.
+    delta2 : ndarray (n_points, 3)
+        Corrections of the points (0 for fixed points).
+    Q1, Q2 : ndarray or None
+        Diagonal blocks of N⁻¹ for the images (n_frames, q, q) and the points (n_points, 3, 3).
+    timings : dict
+        Seconds per stage (normal equations, reduction, factorisation, back-substitution).
+    delta3 : ndarray (g,) or None
+        Corrections of the block-wide unknowns (with :class:`GlobalBlockCorrectionEquations`).
+    Q3, Q13, Q23 : ndarray or None
+        Cofactors of the globals (g, g), image × global (n_frames, q, g), point × global (n_points, 3, g).
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.13)–(3.5.16); §3.6, eq. (3.6.3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> BlockSolution(np.zeros((2, 6)), np.zeros((5, 3))).delta1.shape
+    (2, 6)
+    """
+
+    delta1: np.ndarray
+    delta2: np.ndarray
+    Q1: np.ndarray | None = None
+    Q2: np.ndarray | None = None
     timings: dict = field(default_factory=dict)
+    delta3: np.ndarray | None = None
+    Q3: np.ndarray | None = None
+    Q13: np.ndarray | None = None
+    Q23: np.ndarray | None = None
+
+
+GlobalBlockSolution = BlockSolution         # the former name of the step with global unknowns
 
 
 def _block_sum(index, blocks, n):
@@ -375,7 +923,8 @@ def _block_sum(index, blocks, n):
     from scipy import sparse
     m = index.shape[0]
     summing = sparse.csr_matrix((np.ones(m), (index, np.arange(m))), shape=(n, m))
-    return np.asarray(summing @ blocks.reshape(m, -1)).reshape((n,) + blocks.shape[1:])
+    flat = np.ascontiguousarray(blocks).reshape(m, -1)       # (einsum may return another memory order)
+    return np.asarray(summing @ flat).reshape((n,) + blocks.shape[1:])
 
 
 def _normal_blocks(index, A, B, n, chunk: int = 16384):
@@ -412,15 +961,28 @@ def _invert_3x3_blocks(blocks, rcond):
     if np.any(~(d > 0)):
         bad = np.flatnonzero(~np.all(d > 0, axis=1))
         raise DegenerateGeometryError(f"points {bad[:10].tolist()} are not determined by any observation")
-    scaled = blocks / (d[:, :, None] * d[:, None, :])
-    suspect = np.flatnonzero(~(4.0 * np.linalg.det(scaled) / 9.0 >= rcond))
+    outer = d[:, :, None] * d[:, None, :]
+    scaled = blocks / outer
+    # adjugate (cofactors) of the symmetric 3×3 blocks: closed form, vectorised over the points
+    a, b, c = scaled[:, 0, 0], scaled[:, 0, 1], scaled[:, 0, 2]
+    e, f, i = scaled[:, 1, 1], scaled[:, 1, 2], scaled[:, 2, 2]
+    adj = np.empty_like(scaled)
+    adj[:, 0, 0] = e * i - f * f
+    adj[:, 0, 1] = adj[:, 1, 0] = c * f - b * i
+    adj[:, 0, 2] = adj[:, 2, 0] = b * f - c * e
+    adj[:, 1, 1] = a * i - c * c
+    adj[:, 1, 2] = adj[:, 2, 1] = b * c - a * f
+    adj[:, 2, 2] = a * e - b * b
+    det = a * adj[:, 0, 0] + b * adj[:, 0, 1] + c * adj[:, 0, 2]
+    suspect = np.flatnonzero(~(4.0 * det / 9.0 >= rcond))
     low = np.linalg.eigvalsh(scaled[suspect])[:, 0] if suspect.size else np.zeros(0)
     if np.any(~(low >= rcond)):
         bad = suspect[~(low >= rcond)]
         raise DegenerateGeometryError(
             f"points {bad[:10].tolist()} are not determined: their rays are (nearly) parallel "
             f"(smallest scaled eigenvalue {np.nanmin(low):.1e})")
-    return np.linalg.inv(scaled) / (d[:, :, None] * d[:, None, :])
+    adj /= det[:, None, None] * outer
+    return adj
 
 
 def _band_ordering(S):
@@ -457,26 +1019,55 @@ def _band_ordering(S):
     return (q * order[:, None] + np.arange(q)).ravel(), q * width + q - 1
 
 
+def _band_layout(S, cache=None):
+    """Where every entry of a block-sparse (BSR, q×q blocks) S goes in the lower band of :class:`_Factorisation`.
+
+    The renumbering (:func:`_band_ordering`) and the band positions depend only on the block
+    pattern of S, which is the same in every iteration of an adjustment; with a ``cache`` dict
+    they are computed once and reused while the pattern (``indptr``, ``indices``) is unchanged.
+
+    Returns a dict: ``order``, ``bandwidth``, and for every entry used (i ≥ j after renumbering)
+    its index in ``S.data.ravel()`` (``source``), its flat index in the Fortran-ordered band
+    (``target``), and its original row and column (``row``, ``col``) for the scaling.
+    """
+    if cache is not None:
+        old = cache.get("band_layout")
+        if old is not None and np.array_equal(old["indptr"], S.indptr) and np.array_equal(old["indices"], S.indices):
+            return old
+    q = S.blocksize[0]
+    order, b = _band_ordering(S)
+    n = S.shape[0]
+    position = np.empty(n, np.intp)
+    position[order] = np.arange(n)
+    brow = np.repeat(np.arange(S.indptr.size - 1), np.diff(S.indptr))
+    row = (brow[:, None, None] * q + np.arange(q)[None, :, None] + np.zeros((1, 1, q), np.intp)).ravel()
+    col = (S.indices[:, None, None] * q + np.arange(q)[None, None, :] + np.zeros((1, q, 1), np.intp)).ravel()
+    i, j = position[row], position[col]
+    used = np.flatnonzero(i >= j)
+    small = np.int32 if max(S.data.size, (b + 1) * n) < 2 ** 31 else np.intp     # halves the cached index arrays
+    layout = {"order": order, "bandwidth": b, "source": used.astype(small),
+              "target": ((i - j)[used] + (b + 1) * j[used]).astype(small),
+              "row": row[used].astype(small), "col": col[used].astype(small),
+              "indptr": S.indptr.copy(), "indices": S.indices.copy()}
+    if cache is not None:
+        cache["band_layout"] = layout
+    return layout
+
+
 def _blas_on_one_thread():
-    """A context in which BLAS and LAPACK run on one thread — if threadpoolctl is installed, else a no-op.
+    """A context in which BLAS and LAPACK run on one thread (threadpoolctl, a runtime dependency).
 
     The band Cholesky of :class:`_Factorisation` works on panels a few hundred unknowns wide: a
     multithreaded BLAS gains nothing there, and when other processes hold the cores its threads
     wait for each other, which made the factorisation up to 40× slower on a busy machine
-    (benchmarks/README.md). Setting OPENBLAS_NUM_THREADS=1 has the same effect without threadpoolctl.
+    (benchmarks/README.md).
     """
-    import contextlib
-    controller = _blas_controller()
-    return contextlib.nullcontext() if controller is None else controller.limit(limits=1, user_api="blas")
+    return _blas_controller().limit(limits=1, user_api="blas")
 
 
 @functools.lru_cache(maxsize=None)
 def _blas_controller():
-    """threadpoolctl's view of the loaded BLAS libraries (found once; None without threadpoolctl)."""
-    try:
-        from threadpoolctl import ThreadpoolController
-    except ImportError:
-        return None
+    """threadpoolctl's view of the loaded BLAS libraries (found once)."""
     import scipy.linalg  # noqa: F401 — make sure scipy's BLAS is loaded before the libraries are listed
     return ThreadpoolController()
 
@@ -495,7 +1086,7 @@ class _Factorisation:
     factorisation) means S is singular — a datum defect — and raises DegenerateGeometryError.
     """
 
-    def __init__(self, S, rcond, dense_limit=0, chunk: int = 1 << 17):
+    def __init__(self, S, rcond, dense_limit=0, chunk: int = 1 << 17, cache: dict | None = None):
         from scipy import sparse
         from scipy.linalg import lapack
         n = S.shape[0]
@@ -506,23 +1097,33 @@ class _Factorisation:
         self.n = n
         self.scale = 1.0 / d
         self.dense = n <= dense_limit
-        if self.dense:
+        layout = None
+        if not self.dense and sparse.issparse(S) and S.format == "bsr" and S.blocksize[0] == S.blocksize[1]:
+            layout = _band_layout(S, cache)
+            self.order, b = layout["order"], layout["bandwidth"]
+        elif self.dense:
             self.order, b = np.arange(n), n - 1
         else:
             self.order, b = _band_ordering(S)
-        position = np.empty(n, np.intp)
-        position[self.order] = np.arange(n)
-        # lower band of the scaled, renumbered S in LAPACK storage: band[i − j, j] = S_ij, i ≥ j
-        # (filled in chunks of the non-zeros, so no full-size index arrays are held)
-        S = sparse.coo_matrix(S)
         band = np.zeros((b + 1, n), order="F")         # Fortran order: LAPACK works in it without a copy
-        for start in range(0, S.nnz, chunk):
-            part = slice(start, start + chunk)
-            row, col = S.row[part], S.col[part]
-            i, j = position[row], position[col]
-            lower = i >= j
-            np.add.at(band, (i[lower] - j[lower], j[lower]),
-                      (S.data[part] * self.scale[row] * self.scale[col])[lower])
+        if layout is not None:
+            # the lower band straight from the q×q blocks: one precomputed target per used entry
+            vals = S.data.reshape(-1)[layout["source"]]
+            band.reshape(-1, order="F")[layout["target"]] = \
+                vals * self.scale[layout["row"]] * self.scale[layout["col"]]
+        else:
+            position = np.empty(n, np.intp)
+            position[self.order] = np.arange(n)
+            # lower band of the scaled, renumbered S in LAPACK storage: band[i − j, j] = S_ij, i ≥ j
+            # (filled in chunks of the non-zeros, so no full-size index arrays are held)
+            S = sparse.coo_matrix(S)
+            for start in range(0, S.nnz, chunk):
+                part = slice(start, start + chunk)
+                row, col = S.row[part], S.col[part]
+                i, j = position[row], position[col]
+                lower = i >= j
+                np.add.at(band, (i[lower] - j[lower], j[lower]),
+                          (S.data[part] * self.scale[row] * self.scale[col])[lower])
         del S
         with _blas_on_one_thread():
             if self.dense:       # the same numbers as a full lower triangle (row i − j, column j → i, j)
@@ -577,10 +1178,10 @@ def _pairs_by_point(point, n_points):
     return a, b
 
 
-def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
-                                 frame_prior=None, point_prior=None, free_frames=None, free_points=None,
-                                 covariance: bool = False, rcond: float = 1e-12,
-                                 dense_limit: int = 0) -> BlockSolution:
+def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
+                 frame_prior=None, point_prior=None, free_frames=None, free_points=None,
+                 covariance: bool = False, rcond: float = 1e-12,
+                 dense_limit: int = 0, cache: dict | None = None) -> BlockSolution:
     """One linear step of a block adjustment by the reduction (3.5.13)–(3.5.16).
 
     Builds N₁₁ (6×6 blocks), N₂₂ (3×3 blocks) and the block-sparse N₁₂ from the correction
@@ -625,16 +1226,28 @@ def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_
     # normal-equation blocks (3.5.8) in the convention N·δ = Lᴺ of (3.5.13). The correction
     # equations are bordered by their free terms, [B | L], so that one pass gives N and −Lᴺ.
     # (The blocks of fixed points and images are computed too and replaced below.)
+    # The correction equations are bordered by their free terms, [B | L], so that one pass gives N
+    # and −Lᴺ. (The blocks of fixed points and images are computed too and replaced below.)
     PB1, PB2 = P[:, :, None] * eq.B1, P[:, :, None] * eq.B2
     NL1 = _normal_blocks(eq.frame, PB1, np.concatenate([eq.B1, eq.L[:, :, None]], axis=2), n_frames)
     NL2 = _normal_blocks(eq.point, PB2, np.concatenate([eq.B2, eq.L[:, :, None]], axis=2), n_points)
     N11, L1 = NL1[:, :, :q], -NL1[:, :, q]
     N22, L2 = NL2[:, :, :3], -NL2[:, :, 3]
-    # N₁₂: one q×3 block per observation of a free point in a free image (3.5.3), sorted by image
-    coupled = np.flatnonzero(free_points[eq.point] & free_frames[eq.frame])
-    coupled = coupled[np.argsort(eq.frame[coupled], kind="stable")]
+    # N₁₂: one q×3 block per observation of a free point in a free image (3.5.3), sorted by image;
+    # its transpose N₂₁ sorted by point (the pattern is cached: it is the same in every iteration)
+    pattern = None if cache is None else cache.get("coupling")
+    if pattern is None or not (np.array_equal(pattern["frame"], eq.frame) and np.array_equal(pattern["point"], eq.point)):
+        coupled = np.flatnonzero(free_points[eq.point] & free_frames[eq.frame])
+        coupled = coupled[np.argsort(eq.frame[coupled], kind="stable")]
+        by_point = np.argsort(eq.point[coupled], kind="stable")
+        pattern = {"frame": eq.frame.copy(), "point": eq.point.copy(), "coupled": coupled, "by_point": by_point,
+                   "first": np.searchsorted(eq.frame[coupled], np.arange(n_frames + 1)),
+                   "first_p": np.searchsorted(eq.point[coupled][by_point], np.arange(n_points + 1))}
+        if cache is not None:
+            cache["coupling"] = pattern
+    coupled, by_point = pattern["coupled"], pattern["by_point"]
     pts, frm = eq.point[coupled], eq.frame[coupled]
-    W = np.einsum("kri,krj->kij", PB1, eq.B2)[coupled]
+    W = np.einsum("kri,krj->kij", PB1, eq.B2)[coupled]                     # q×3 blocks of N₁₂
     del PB1, PB2
     _add_priors(frame_prior, N11, L1)
     _add_priors(point_prior, N22, L2)
@@ -651,19 +1264,20 @@ def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_
     # per pair of images with a common point (fig. 3.12).
     t = time.perf_counter()
     iN22 = _invert_3x3_blocks(N22, rcond)
-    first = np.searchsorted(frm, np.arange(n_frames + 1))                 # block-row pointers
-    N12 = sparse.bsr_matrix((W, pts, first), shape=(n_frames * q, n_points * 3))
-    Y = sparse.bsr_matrix((W @ iN22[pts], pts, first), shape=N12.shape)  # N₁₂N₂₂⁻¹
-    S = _block_diagonal(N11) - Y @ N12.T
+    first = pattern["first"]                                               # block-row pointers
+    Y = sparse.bsr_matrix((W @ iN22[pts], pts, first), shape=(n_frames * q, n_points * 3))   # N₁₂N₂₂⁻¹
+    N21 = sparse.bsr_matrix((np.take(W.transpose(0, 2, 1), by_point, axis=0), frm[by_point], pattern["first_p"]),
+                            shape=(n_points * 3, n_frames * q))                                 # N₁₂ᵀ
+    S = _block_diagonal(N11) - Y @ N21        # (no duplicate blocks: the band layout relies on it)
     s = L1.ravel() - Y @ L2.ravel()
-    del Y
+    del Y, N21
     keep = np.repeat(free_frames, q)
     if not keep.all():
         S = S.tocsr()[keep][:, keep]
     timings["reduction"] = time.perf_counter() - t
 
     t = time.perf_counter()
-    fac = _Factorisation(S, rcond, dense_limit)
+    fac = _Factorisation(S, rcond, dense_limit, cache=cache)
     del S
     timings["factorisation"] = time.perf_counter() - t
 
@@ -695,27 +1309,6 @@ def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_
     return BlockSolution(d1.reshape(n_frames, q), d2, Q1, Q2, timings)
 
 
-@dataclass
-class BlockAdjustment:
-    """Result of :func:`block_gauss_newton`: a bundle-type adjustment with its accuracy."""
-
-    frames: np.ndarray            # (n_frames, q) adjusted image unknowns
-    points: np.ndarray            # (n_points, 3) adjusted points
-    residuals: np.ndarray         # (m, r) V of the image observations at the solution
-    frame_residuals: np.ndarray   # (n_frames, q) V of the direct image-unknown observations (0 if none)
-    point_residuals: np.ndarray   # (n_points, 3) V of the direct point observations (0 if none)
-    mu: float                     # (3.5.12)
-    dof: int                      # M − N
-    frames_std: np.ndarray | None  # m_j (3.5.11) of the image unknowns
-    points_std: np.ndarray | None  # m_j of the point coordinates
-    Q1: np.ndarray | None
-    Q2: np.ndarray | None
-    iterations: int
-    converged: bool
-    history: list = field(default_factory=list)
-    timings: dict = field(default_factory=dict)
-
-
 def _add_priors(prior, N, L):
     """Add direct observations (values l, weights p) of block unknowns to their diagonal blocks
     of N and to Lᴺ, in place: N_ii += p, Lᴺ_i −= p·l (the (3.5.17)–(3.5.19) rows folded in)."""
@@ -725,24 +1318,6 @@ def _add_priors(prior, N, L):
     idx = np.arange(p.shape[1])
     N[:, idx, idx] += p
     L -= p * l
-
-
-def _record_block_step(history, iteration, step, vtpv, progress, growth) -> int:
-    """Append an :class:`IterationRecord`, report it, and watch for divergence.
-
-    Returns the number of consecutive iterations in which VᵀPV grew; four in a row raise
-    :class:`ConvergenceError` with the history.
-    """
-    record = IterationRecord(iteration, np.empty(0), step, vtpv)
-    history.append(record)
-    if progress is not None:
-        progress(record)
-    if len(history) > 1 and vtpv > history[-2].vtpv * (1 + 1e-9):
-        growth += 1
-        if growth >= 4:
-            raise ConvergenceError(f"diverging: VᵀPV grew in {growth} consecutive iterations", history)
-        return growth
-    return 0
 
 
 def _direct_observations(obs, shape):
@@ -759,124 +1334,352 @@ def _direct_observations(obs, shape):
     return np.where(weights > 0, values, 0.0), weights
 
 
-def block_gauss_newton(linearize, frames0, points0, *, frame_observations=None, point_observations=None,
-                       free_frames=None, free_points=None, tol_frames=1e-8, tol_points=1e-6,
-                       max_iter: int = 30, covariance: bool = False, rcond: float = 1e-12,
-                       dense_limit: int = 0, progress=None) -> BlockAdjustment:
+def solve_block_normal_equations(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
+                                 frame_prior=None, point_prior=None, global_prior=None, free_frames=None,
+                                 free_points=None, covariance: bool = False, rcond: float = 1e-12,
+                                 dense_limit: int = 0, global_names=(), frame_names=()) -> BlockSolution:
+    """One linear step of a block adjustment by the reduction (3.5.13)–(3.5.16) — the block-sparse solver.
+
+    Builds N₁₁ (q×q blocks), N₂₂ (3×3 blocks) and the block-sparse N₁₂ from the correction
+    equations, eliminates the points (3.5.16) with vectorised 3×3 block inverses, factorises the
+    reduced matrix of the image unknowns by a band Cholesky (the images renumbered for a narrow
+    band, LAPACK ``dpbtrf``) and recovers the points by back-substitution
+    δ₂ = N₂₂⁻¹(L₂ᴺ − N₁₂ᵀδ₁) (second row of (3.5.14)). With
+    :class:`GlobalBlockCorrectionEquations` the block-wide unknowns join the reduced system and are
+    solved from their own g×g system after the images are eliminated in their turn
+    (G = S₃₃ − S₃₁S₁₁⁻¹S₁₃); a (near-)singular G raises :class:`DegenerateGeometryError` naming
+    the global unknowns and the image unknowns that absorb them.
+
+    Parameters
+    ----------
+    eq : BlockCorrectionEquations or GlobalBlockCorrectionEquations
+        The image-observation rows (3.5.2)/(3.5.3) (and (3.6.3) with globals).
+    n_frames, n_points : int
+        Number of images and points.
+    frame_prior, point_prior : (l, p) pairs of arrays (n_frames, q) / (n_points, 3), optional
+        Direct observations of single unknowns, δ + l = v with weight p (p = 0: none):
+        control points (3.5.17), GNSS centres (3.5.18), INS angles (3.5.19).
+    global_prior : (l, p) pair of arrays (g,), optional
+        Direct observations of the global unknowns.
+    free_frames, free_points : bool arrays, optional
+        False holds an image / a point fixed (its correction is 0, its columns drop out: (3.5.3),
+        (3.5.4)). Default: all free. (``free_frames`` only without global unknowns.)
+    covariance : bool
+        Also return the diagonal blocks of Q = N⁻¹ (for m_j = μ√Q_jj, (3.5.11)). Needs S⁻¹ dense:
+        O((6n)²) memory.
+    rcond : float
+        Smallest acceptable pivot of the scaled reduced matrix; below it the block is declared
+        singular (datum defect).
+    dense_limit : int
+        Reduced systems of up to this many unknowns are factorised by the dense Cholesky
+        (default 0: always the band Cholesky).
+    global_names, frame_names : sequences of str, optional
+        Names used in the message of a singular global block.
+
+    Returns
+    -------
+    BlockSolution
+        δ₁, δ₂ (and δ₃), the cofactor blocks if asked, and the seconds spent per stage.
+
+    Raises
+    ------
+    InputError
+        Shapes that do not match, NaN/inf in the equations.
+    DegenerateGeometryError
+        A point not determined (parallel rays), a datum defect, inseparable global unknowns.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.8)–(3.5.16); §3.6, eq. (3.6.3); §3.8, eq. (3.8.15).
+
+    Examples
+    --------
+    Two images, five points, correction equations of a made-up block (control: the direct
+    observations of the image unknowns):
+
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> frame, point = np.repeat([0, 1], 5), np.tile(np.arange(5), 2)
+    >>> eq = BlockCorrectionEquations(frame, point, rng.normal(size=(10, 2, 6)),
+    ...                               rng.normal(size=(10, 2, 3)), np.zeros((10, 2)))
+    >>> prior = (np.zeros((2, 6)), np.ones((2, 6)))
+    >>> sol = solve_block_normal_equations(eq, 2, 5, frame_prior=prior)
+    >>> float(np.abs(sol.delta1).max()), float(np.abs(sol.delta2).max())
+    (0.0, 0.0)
+    """
+    _check_block_equations(eq, n_frames, n_points)
+    if isinstance(eq, GlobalBlockCorrectionEquations):
+        if free_frames is not None and not np.all(free_frames):
+            raise InputError("fixed images are not supported together with global unknowns")
+        t = time.perf_counter()
+        sol = _solve_block_global(eq, n_frames, n_points, frame_prior=frame_prior, point_prior=point_prior,
+                                  global_prior=global_prior, free_points=free_points, covariance=covariance,
+                                  rcond=rcond, global_names=global_names, frame_names=frame_names)
+        sol.timings["solve"] = time.perf_counter() - t
+        return sol
+    if global_prior is not None:
+        raise InputError("global_prior needs GlobalBlockCorrectionEquations (with B3)")
+    return _solve_block(eq, n_frames, n_points, frame_prior=frame_prior, point_prior=point_prior,
+                        free_frames=free_frames, free_points=free_points, covariance=covariance, rcond=rcond,
+                        dense_limit=dense_limit)
+
+
+def _check_block_equations(eq, n_frames, n_points):
+    """Shapes, index ranges and finiteness of block correction equations (at the public boundary)."""
+    if not isinstance(eq, BlockCorrectionEquations):
+        raise InputError(f"eq must be BlockCorrectionEquations, got {type(eq).__name__}")
+    B1, B2, L = (np.asarray(a) for a in (eq.B1, eq.B2, eq.L))
+    if B1.ndim != 3 or B2.ndim != 3 or L.ndim != 2 or B2.shape[2] != 3 or \
+            not (B1.shape[:2] == B2.shape[:2] == L.shape) or np.shape(eq.frame) != (L.shape[0],) or \
+            np.shape(eq.point) != (L.shape[0],):
+        raise InputError(f"block correction equations: B1 (m, r, q), B2 (m, r, 3), L (m, r), frame and point (m,) "
+                         f"expected, got {B1.shape}, {B2.shape}, {L.shape}, {np.shape(eq.frame)}, {np.shape(eq.point)}")
+    frame, point = np.asarray(eq.frame), np.asarray(eq.point)
+    if frame.size and (frame.min() < 0 or frame.max() >= n_frames or point.min() < 0 or point.max() >= n_points):
+        raise InputError(f"image or point index outside 0…{n_frames - 1} / 0…{n_points - 1}")
+    if not (np.all(np.isfinite(B1)) and np.all(np.isfinite(B2)) and np.all(np.isfinite(L))
+            and np.all(np.isfinite(eq.P))):
+        raise InputError("the block correction equations contain NaN or inf")
+
+
+class _BlockSolver:
+    """The block-sparse linear solver of the one Gauss–Newton loop (§3.5; §3.6/§3.8 with globals).
+
+    The state is (frames, points, globals); δ is a :class:`BlockSolution`.
+    """
+
+    watch_divergence = True
+
+    def __init__(self, linearize, shapes, with_globals, obs, free_frames, free_points, tols, covariance, rcond,
+                 dense_limit, global_names, frame_names):
+        self._linearize, self.with_globals = linearize, with_globals
+        self.obs, self.free_frames, self.free_points, self.tols = obs, free_frames, free_points, tols
+        self.covariance, self.rcond, self.dense_limit = covariance, rcond, dense_limit
+        self.global_names, self.frame_names = tuple(global_names), tuple(frame_names)
+        (n_frames, q), n_points, g = shapes
+        self.n_frames, self.q, self.n_points, self.g = n_frames, q, n_points, g
+        self.n_unknowns = q * int(free_frames.sum()) + 3 * int(free_points.sum()) + g
+        self.m_rows = None
+        self.timings = {"jacobian": 0.0}
+        self.cache = {}           # the block pattern and band layout, the same in every iteration
+
+    def linearize(self, state):
+        t = time.perf_counter()
+        eq = self._linearize(*state) if self.with_globals else self._linearize(*state[:2])
+        self.timings["jacobian"] += time.perf_counter() - t
+        return eq
+
+    def priors(self, state):
+        # l = x⁰ − x_measured for the directly observed unknowns, (3.5.17)–(3.5.19)
+        return [None if w is None else (np.where(w > 0, x - v, 0.0), w) for x, (v, w) in zip(state, self.obs)]
+
+    @staticmethod
+    def vtpv(eq, pr):
+        return float(np.sum(np.broadcast_to(eq.P, eq.L.shape) * eq.L ** 2)) + \
+            sum(float(np.sum(p[1] * p[0] ** 2)) for p in pr if p is not None)
+
+    def solve(self, eq, pr, covariance):
+        if self.with_globals:
+            return _solve_block_global(eq, self.n_frames, self.n_points, frame_prior=pr[0], point_prior=pr[1],
+                                       global_prior=pr[2], free_points=self.free_points, covariance=covariance,
+                                       rcond=self.rcond, global_names=self.global_names,
+                                       frame_names=self.frame_names)
+        return _solve_block(eq, self.n_frames, self.n_points, frame_prior=pr[0], point_prior=pr[1],
+                            free_frames=self.free_frames, free_points=self.free_points, covariance=covariance,
+                            rcond=self.rcond, dense_limit=self.dense_limit, cache=self.cache)
+
+    def step(self, eq, state, iteration, history):
+        pr = self.priors(state)
+        value = self.vtpv(eq, pr)
+        if not np.isfinite(value):
+            raise ConvergenceError(f"the correction equations became NaN/inf at iteration {iteration}", history)
+        if self.m_rows is None:
+            self.m_rows = eq.L.size + sum(int((w > 0).sum()) for _, w in self.obs if w is not None)
+            if self.m_rows <= self.n_unknowns:
+                raise InputError(f"{self.m_rows} correction equations cannot determine {self.n_unknowns} "
+                                 "unknowns (M ≤ N)")
+        sol = self.solve(eq, pr, False)
+        for key, val in sol.timings.items():
+            self.timings[key] = self.timings.get(key, 0.0) + val
+        return sol, value
+
+    def _deltas(self, sol):
+        return (sol.delta1, sol.delta2) + ((sol.delta3,) if self.with_globals else ())
+
+    def record(self, iteration, state, sol, vtpv):
+        step = np.array([np.abs(d).max(initial=0.0) for d in self._deltas(sol)])
+        return IterationRecord(iteration, np.empty(0), step, vtpv)
+
+    def update(self, state, sol):
+        frames, points, glob = state
+        return (frames + sol.delta1, points + sol.delta2, glob + sol.delta3 if self.with_globals else glob)
+
+    @staticmethod
+    def finite(state):
+        return all(bool(np.all(np.isfinite(s))) for s in state)
+
+    def converged(self, sol):
+        return all(bool(np.all(np.abs(d) < t)) for d, t in zip(self._deltas(sol), self.tols))
+
+    def no_convergence(self, max_iter, sol):
+        step = [float(np.abs(d).max(initial=0.0)) for d in self._deltas(sol)]
+        what = ("images", "points", "globals")
+        return (f"no convergence in {max_iter} iterations: last max |δ| = "
+                + ", ".join(f"{v:.3g} ({w})" for v, w in zip(step, what)))
+
+    def finish(self, state, history):
+        frames, points, glob = state
+        eq = self.linearize(state)
+        pr = self.priors(state)
+        dof = self.m_rows - self.n_unknowns
+        mu = float(np.sqrt(self.vtpv(eq, pr) / dof))
+        zeros = [np.zeros_like(s) if p is None else p[0] for s, p in zip(state, pr)]
+        out = Adjustment(x=np.concatenate([frames.ravel(), points.ravel(), glob]), residuals=eq.L.copy(), mu=mu,
+                         Q=None, std=None, corr=None, dof=dof, iterations=len(history), converged=True,
+                         history=history, names=self.global_names, frames=frames, points=points,
+                         globals=glob if self.with_globals else None, frame_residuals=zeros[0],
+                         point_residuals=zeros[1], global_residuals=zeros[2] if self.with_globals else None,
+                         timings=self.timings)
+        if self.covariance:
+            t = time.perf_counter()
+            sol = self.solve(eq, pr, True)
+            out.Q1, out.Q2, out.Q3, out.Q13, out.Q23 = sol.Q1, sol.Q2, sol.Q3, sol.Q13, sol.Q23
+            out.frames_std = mu * np.sqrt(np.einsum("kii->ki", sol.Q1))
+            out.points_std = mu * np.sqrt(np.einsum("kii->ki", sol.Q2))
+            if self.with_globals:
+                out.globals_std = mu * np.sqrt(np.diag(sol.Q3))
+            self.timings["covariance"] = sol.timings.get("covariance", time.perf_counter() - t)
+        return out
+
+
+def block_gauss_newton(linearize, frames0, points0, globals0=None, *, frame_observations=None,
+                       point_observations=None, global_observations=None, free_frames=None, free_points=None,
+                       tol_frames=1e-8, tol_points=1e-6, tol_globals=1e-10, max_iter: int = 30,
+                       covariance: bool = False, rcond: float = 1e-12, dense_limit: int = 0, global_names=(),
+                       frame_names=(), progress=None) -> Adjustment:
     """Gauss–Newton iterations of a block adjustment solved by the reduction (3.5.16).
 
-    The same algorithm as :func:`gauss_newton` (δ = −N⁻¹Lᴺ (3.5.9), iterate until the corrections
-    are negligible, then μ (3.5.12) and m_j (3.5.11)), with the linear step done by
-    :func:`solve_block_normal_equations` so that a block of thousands of images stays sparse.
+    The one Gauss–Newton loop of :func:`gauss_newton` (δ = −N⁻¹Lᴺ (3.5.9), iterate until the
+    corrections are negligible, then μ (3.5.12) and m_j (3.5.11)) with the block-sparse linear
+    solver :func:`solve_block_normal_equations`, so that a block of thousands of images stays
+    sparse. With ``globals0`` a third group of unknowns shared by all observations
+    (self-calibration (3.6.3), rig mounting elements (3.8.15)) joins the reduced system. VᵀPV
+    growing in four consecutive iterations stops the iteration (divergence).
 
     Parameters
     ----------
     linearize : callable
-        ``linearize(frames, points) -> BlockCorrectionEquations`` at the approximation.
-    frames0, points0 : arrays (n_frames, q), (n_points, 3)
+        ``linearize(frames, points) -> BlockCorrectionEquations`` at the approximation, or with
+        ``globals0``: ``linearize(frames, points, globals) -> GlobalBlockCorrectionEquations``.
+    frames0, points0 : array_like (n_frames, q), (n_points, 3)
         Approximate values.
-    frame_observations, point_observations : (values, weights) pairs, optional
-        Direct observations of image unknowns / coordinates, same shapes as ``frames0`` /
-        ``points0``; weight 0 (value NaN allowed) means "not observed". Their correction
+    globals0 : array_like (g,), optional
+        Approximate values of the block-wide unknowns.
+    frame_observations, point_observations, global_observations : (values, weights) pairs, optional
+        Direct observations of image unknowns / coordinates / globals, same shapes as the
+        approximations; weight 0 (value NaN allowed) means "not observed". Their correction
         equations are δ + l = v with l = approximate − measured, (3.5.17)–(3.5.19).
     free_frames, free_points : bool arrays, optional
-        False holds the unknowns fixed at their start values.
-    tol_frames, tol_points : float or arrays (q,), (3,)
+        False holds the unknowns fixed at their start values (``free_frames`` only without globals).
+    tol_frames, tol_points, tol_globals : float or arrays (q,), (3,), (g,)
         Convergence when every |δ| is below them.
     max_iter : int
         Iterations before :class:`ConvergenceError`.
     covariance : bool
-        Compute Q blocks and m_j at the end (see :func:`solve_block_normal_equations`).
+        Compute the cofactor blocks and m_j at the end (see :func:`solve_block_normal_equations`).
+    rcond : float
+        Smallest acceptable scaled pivot (datum-defect test).
+    dense_limit : int
+        Reduced systems up to this size use the dense Cholesky.
+    global_names, frame_names : sequences of str, optional
+        Names of the global unknowns (messages, :meth:`Adjustment.summary`) and of the image unknowns.
     progress : callable, optional
-        Called with each :class:`IterationRecord` (``delta`` holds max |δ₁|, max |δ₂|).
-    """
-    import time
+        Called with each :class:`IterationRecord` (``delta`` holds max |δ₁|, max |δ₂| [, max |δ₃|]).
 
-    frames = np.array(frames0, dtype=float)
-    points = np.array(points0, dtype=float)
+    Returns
+    -------
+    Adjustment
+        With ``frames``, ``points`` (and ``globals``), residuals of the image and direct
+        observations, μ, dof, the history, the cofactor blocks and m_j if asked, and ``timings``.
+
+    Raises
+    ------
+    InputError
+        Malformed approximations or observations; M ≤ N.
+    DegenerateGeometryError
+        Datum defect, undetermined points, inseparable global unknowns.
+    ConvergenceError
+        NaN/inf, divergence, or no convergence in ``max_iter`` steps (with the history).
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.8)–(3.5.19); §3.6, eq. (3.6.3); §3.8, eq. (3.8.15).
+
+    Examples
+    --------
+    Adjust a line of "images" that each see two "points" — a toy block with q = 1 whose
+    image unknown is an offset a_i and whose point unknowns are (X, Y, Z) measured directly
+    in the first two rows as X + a_i:
+
+    >>> import numpy as np
+    >>> truth = np.array([[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])
+    >>> frame, point = np.array([0, 0, 1, 1]), np.array([0, 1, 0, 1])
+    >>> def linearize(frames, points):
+    ...     r = points[point] + frames[frame, :1] - truth[point]
+    ...     B1 = np.ones((4, 3, 1))
+    ...     return BlockCorrectionEquations(frame, point, B1, np.broadcast_to(np.eye(3), (4, 3, 3)).copy(), r)
+    >>> adj = block_gauss_newton(linearize, np.zeros((2, 1)), truth + 0.1,
+    ...                          frame_observations=(np.zeros((2, 1)), np.ones((2, 1))))
+    >>> float(np.abs(adj.points - truth).max()) < 1e-9, adj.iterations
+    (True, 2)
+    """
+    try:
+        frames = np.array(frames0, dtype=float)
+        points = np.array(points0, dtype=float)
+        glob = np.zeros(0) if globals0 is None else np.array(globals0, dtype=float).reshape(-1)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"the approximate values must be numbers: {exc}") from None
+    if not callable(linearize):
+        raise InputError("linearize must be a callable")
     if frames.ndim != 2 or points.ndim != 2 or points.shape[1] != 3:
         raise InputError(f"approximations must be (n_frames, q) and (n_points, 3), got {frames.shape}, {points.shape}")
-    if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points))):
+    if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points)) and np.all(np.isfinite(glob))):
         raise InputError("the approximate values contain NaN or inf")
+    if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
+        raise InputError(f"max_iter must be a positive integer, got {max_iter!r}")
     n_frames, q = frames.shape
-    n_points = points.shape[0]
+    n_points, g = points.shape[0], glob.size
+    with_globals = globals0 is not None
+    if with_globals and free_frames is not None and not np.all(free_frames):
+        raise InputError("fixed images are not supported together with global unknowns")
     free_frames = np.ones(n_frames, bool) if free_frames is None else np.asarray(free_frames, bool)
     free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
+    if free_frames.shape != (n_frames,) or free_points.shape != (n_points,):
+        raise InputError("free_frames / free_points: one flag per image / point")
+    obs = [_direct_observations(frame_observations, frames.shape),
+           _direct_observations(point_observations, points.shape),
+           _direct_observations(global_observations, glob.shape)]
+    try:
+        tols = [np.broadcast_to(np.asarray(t, dtype=float), (s,))
+                for t, s in ((tol_frames, q), (tol_points, 3), (tol_globals, g))]
+    except ValueError:
+        raise InputError("tolerances: one value or one per unknown of the group") from None
+    solver = _BlockSolver(linearize, ((n_frames, q), n_points, g), with_globals, obs, free_frames, free_points,
+                          tols, covariance, rcond, dense_limit, global_names, frame_names)
+    return _iterate(solver, (frames, points, glob), max_iter, progress)
 
-    fv, fw = _direct_observations(frame_observations, frames.shape)
-    pv, pw = _direct_observations(point_observations, points.shape)
-    tol1 = np.broadcast_to(np.asarray(tol_frames, dtype=float), (q,))
-    tol2 = np.broadcast_to(np.asarray(tol_points, dtype=float), (3,))
-    timings = {"jacobian": 0.0}
-    history = []
 
-    def priors():
-        fp = None if fw is None else (np.where(fw > 0, frames - fv, 0.0), fw)       # l = x⁰ − x_measured
-        pp = None if pw is None else (np.where(pw > 0, points - pv, 0.0), pw)
-        return fp, pp
+def block_gauss_newton_global(linearize, frames0, points0, globals0, **kwargs) -> Adjustment:
+    """The former name of :func:`block_gauss_newton` with ``globals0`` (kept for callers)."""
+    return block_gauss_newton(linearize, frames0, points0, globals0, **kwargs)
 
-    def vtpv(eq, fp, pp):
-        total = float(np.sum(np.broadcast_to(eq.P, eq.L.shape) * eq.L ** 2))
-        for pr in (fp, pp):
-            if pr is not None:
-                total += float(np.sum(pr[1] * pr[0] ** 2))
-        return total
 
-    n_unknowns = q * int(free_frames.sum()) + 3 * int(free_points.sum())
-    growth = 0
-    for iteration in range(1, max_iter + 1):
-        t = time.perf_counter()
-        eq = linearize(frames, points)
-        timings["jacobian"] += time.perf_counter() - t
-        fp, pp = priors()
-        value = vtpv(eq, fp, pp)
-        if not np.isfinite(value):
-            raise ConvergenceError(f"the correction equations became NaN/inf at iteration {iteration}", history)
-        if iteration == 1:
-            m_rows = eq.L.size + (0 if fw is None else int((fw > 0).sum())) + (0 if pw is None else int((pw > 0).sum()))
-            if m_rows <= n_unknowns:
-                raise InputError(f"{m_rows} correction equations cannot determine {n_unknowns} unknowns (M ≤ N)")
-        sol = solve_block_normal_equations(eq, n_frames, n_points, frame_prior=fp, point_prior=pp,
-                                           free_frames=free_frames, free_points=free_points,
-                                           covariance=False, rcond=rcond, dense_limit=dense_limit)
-        for key, val in sol.timings.items():
-            timings[key] = timings.get(key, 0.0) + val
-        step = np.array([np.abs(sol.delta1).max(initial=0.0), np.abs(sol.delta2).max(initial=0.0)])
-        growth = _record_block_step(history, iteration, step, value, progress, growth)
-        frames = frames + sol.delta1
-        points = points + sol.delta2
-        if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points))):
-            raise ConvergenceError(f"the iteration produced NaN/inf at step {iteration}", history)
-        if np.all(np.abs(sol.delta1) < tol1) and np.all(np.abs(sol.delta2) < tol2):
-            break
-    else:
-        raise ConvergenceError(
-            f"no convergence in {max_iter} iterations: last max |δ| = {step[0]:.3g} (images), "
-            f"{step[1]:.3g} (points)", history)
+BlockAdjustment = GlobalBlockAdjustment = Adjustment      # the former result types: one type now
 
-    # residuals and accuracy at the solution (3.5.11)/(3.5.12)
-    t = time.perf_counter()
-    eq = linearize(frames, points)
-    timings["jacobian"] += time.perf_counter() - t
-    fp, pp = priors()
-    m_rows = eq.L.size + (0 if fw is None else int((fw > 0).sum())) + (0 if pw is None else int((pw > 0).sum()))
-    dof = m_rows - n_unknowns
-    mu = float(np.sqrt(vtpv(eq, fp, pp) / dof))
-    Q1 = Q2 = fstd = pstd = None
-    if covariance:
-        sol = solve_block_normal_equations(eq, n_frames, n_points, frame_prior=fp, point_prior=pp,
-                                           free_frames=free_frames, free_points=free_points,
-                                           covariance=True, rcond=rcond, dense_limit=dense_limit)
-        timings["covariance"] = sol.timings["covariance"]
-        Q1, Q2 = sol.Q1, sol.Q2
-        fstd = mu * np.sqrt(np.einsum("kii->ki", Q1))
-        pstd = mu * np.sqrt(np.einsum("kii->ki", Q2))
-    zero_f = np.zeros_like(frames) if fp is None else fp[0]
-    zero_p = np.zeros_like(points) if pp is None else pp[0]
-    return BlockAdjustment(frames=frames, points=points, residuals=eq.L.copy(), frame_residuals=zero_f,
-                           point_residuals=zero_p, mu=mu, dof=dof, frames_std=fstd, points_std=pstd,
-                           Q1=Q1, Q2=Q2, iterations=len(history), converged=True, history=history,
-                           timings=timings)
+
+def solve_block_normal_equations_global(eq, n_frames, n_points, **kwargs) -> BlockSolution:
+    """The former name of :func:`solve_block_normal_equations` with global unknowns (kept for callers)."""
+    return solve_block_normal_equations(eq, n_frames, n_points, **kwargs)
 
 
 def block_equations_dense(eq: BlockCorrectionEquations, n_frames: int, n_points: int, free_points=None):
@@ -884,9 +1687,46 @@ def block_equations_dense(eq: BlockCorrectionEquations, n_frames: int, n_points:
 
     Columns: the q unknowns of every image, then X, Y, Z of every free point — the layout of
     fig. 3.11. Only for small blocks (checks, teaching): B has m·r rows and q·n + 3·k columns.
+
+    Parameters
+    ----------
+    eq : BlockCorrectionEquations
+    n_frames, n_points : int
+    free_points : bool array, optional
+        Points that are unknowns (default: all).
+
+    Returns
+    -------
+    B : ndarray (m·r, q·n + 3·k_free)
+    L : ndarray (m·r,)
+    P : ndarray (m·r,)
+        Weights per row.
+
+    Raises
+    ------
+    InputError
+        Shapes that do not match, indices outside the block, NaN/inf.
+
+    References
+    ----------
+    Chibunichev (2022), §3.5, eqs. (3.5.2)–(3.5.8); fig. 3.11.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> frame, point = np.repeat([0, 1], 5), np.tile(np.arange(5), 2)
+    >>> eq = BlockCorrectionEquations(frame, point, rng.normal(size=(10, 2, 6)), rng.normal(size=(10, 2, 3)),
+    ...                               rng.normal(size=(10, 2)))
+    >>> B, L, P = block_equations_dense(eq, 2, 5)
+    >>> B.shape, L.shape
+    ((20, 27), (20,))
     """
+    _check_block_equations(eq, n_frames, n_points)
     m, r, q = eq.B1.shape
     free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
+    if free_points.shape != (n_points,):
+        raise InputError(f"free_points: one flag per point ({n_points}), got shape {free_points.shape}")
     column = np.cumsum(free_points) - 1
     n_cols = q * n_frames + 3 * int(free_points.sum())
     B = np.zeros((m * r, n_cols))
@@ -913,26 +1753,27 @@ class GlobalBlockCorrectionEquations(BlockCorrectionEquations):
     ----------
     B3 : array (m, r, g)
         Derivatives by the global unknowns (zeros where an observation does not depend on them).
+
+    References
+    ----------
+    Chibunichev (2022), §3.6, eq. (3.6.3); §3.8, eq. (3.8.15).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> frame, point = np.repeat([0, 1], 5), np.tile(np.arange(5), 2)
+    >>> eq = BlockCorrectionEquations(frame, point, rng.normal(size=(10, 2, 6)), rng.normal(size=(10, 2, 3)),
+    ...                               rng.normal(size=(10, 2)))
+    >>> geq = GlobalBlockCorrectionEquations(eq.frame, eq.point, eq.B1, eq.B2, eq.L, B3=np.ones((10, 2, 1)))
+    >>> geq.B3.shape
+    (10, 2, 1)
     """
 
     B3: np.ndarray | None = None
 
 
-@dataclass
-class GlobalBlockSolution:
-    """One solved linear step with global unknowns, and (optionally) cofactor blocks."""
-
-    delta1: np.ndarray                  # (n_frames, q)
-    delta2: np.ndarray                  # (n_points, 3)
-    delta3: np.ndarray                  # (g,)
-    Q1: np.ndarray | None = None        # (n_frames, q, q) diagonal blocks of N⁻¹ (images)
-    Q2: np.ndarray | None = None        # (n_points, 3, 3) diagonal blocks of N⁻¹ (points)
-    Q3: np.ndarray | None = None        # (g, g) cofactors of the global unknowns
-    Q13: np.ndarray | None = None       # (n_frames, q, g) image × global cofactors
-    Q23: np.ndarray | None = None       # (n_points, 3, g) point × global cofactors
-
-
-def solve_block_normal_equations_global(eq: GlobalBlockCorrectionEquations, n_frames: int, n_points: int, *,
+def _solve_block_global(eq: GlobalBlockCorrectionEquations, n_frames: int, n_points: int, *,
                                         frame_prior=None, point_prior=None, global_prior=None, free_points=None,
                                         covariance: bool = False, rcond: float = 1e-12, global_names=(),
                                         frame_names=()) -> GlobalBlockSolution:
@@ -1048,7 +1889,7 @@ def solve_block_normal_equations_global(eq: GlobalBlockCorrectionEquations, n_fr
     dA = np.concatenate([d1, d3])
     d2 = np.einsum("kij,kj->ki", iN22, L2 - (C.T @ dA).reshape(n_points, 3))
     d2[~free_points] = 0.0
-    sol = GlobalBlockSolution(d1.reshape(n_frames, q), d2, d3)
+    sol = BlockSolution(d1.reshape(n_frames, q), d2, delta3=d3)
     if covariance:
         iS11 = fac.inverse()
         QA = np.empty((nq + g, nq + g))
@@ -1077,107 +1918,43 @@ def solve_block_normal_equations_global(eq: GlobalBlockCorrectionEquations, n_fr
     return sol
 
 
-@dataclass
-class GlobalBlockAdjustment(BlockAdjustment):
-    """Result of :func:`block_gauss_newton_global`: :class:`BlockAdjustment` plus the global unknowns."""
-
-    globals: np.ndarray | None = None          # (g,) adjusted block-wide unknowns
-    globals_std: np.ndarray | None = None      # m_j (3.5.11)
-    Q3: np.ndarray | None = None               # (g, g)
-    Q13: np.ndarray | None = None              # (n_frames, q, g)
-    Q23: np.ndarray | None = None              # (n_points, 3, g)
-    global_residuals: np.ndarray | None = None  # V of direct observations of the globals
-
-
-def block_gauss_newton_global(linearize, frames0, points0, globals0, *, frame_observations=None,
-                              point_observations=None, global_observations=None, free_points=None,
-                              tol_frames=1e-8, tol_points=1e-6, tol_globals=1e-10, max_iter: int = 30,
-                              covariance: bool = False, rcond: float = 1e-12, global_names=(), frame_names=(),
-                              progress=None) -> GlobalBlockAdjustment:
-    """Gauss–Newton iterations of a block adjustment with block-wide unknowns (§3.6, §3.8).
-
-    :func:`block_gauss_newton` with a third group of unknowns shared by all observations; each
-    linear step is :func:`solve_block_normal_equations_global`. ``linearize(frames, points,
-    globals) -> GlobalBlockCorrectionEquations``. Direct observations (values, weights) as in
-    :func:`block_gauss_newton`, with ``global_observations`` of shape (g,).
-    """
-    frames = np.array(frames0, dtype=float)
-    points = np.array(points0, dtype=float)
-    glob = np.array(globals0, dtype=float).reshape(-1)
-    if frames.ndim != 2 or points.ndim != 2 or points.shape[1] != 3:
-        raise InputError(f"approximations must be (n_frames, q) and (n_points, 3), got {frames.shape}, {points.shape}")
-    if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points)) and np.all(np.isfinite(glob))):
-        raise InputError("the approximate values contain NaN or inf")
-    n_frames, q = frames.shape
-    n_points, g = points.shape[0], glob.size
-    free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
-
-    obs = [_direct_observations(frame_observations, frames.shape),
-           _direct_observations(point_observations, points.shape),
-           _direct_observations(global_observations, glob.shape)]
-    tols = [np.broadcast_to(np.asarray(t, dtype=float), (s,)) for t, s in ((tol_frames, q), (tol_points, 3), (tol_globals, g))]
-
-    def priors(values):
-        return [None if w is None else (np.where(w > 0, x - v, 0.0), w) for x, (v, w) in zip(values, obs)]
-
-    def vtpv(eq, pr):
-        return float(np.sum(np.broadcast_to(eq.P, eq.L.shape) * eq.L ** 2)) + \
-            sum(float(np.sum(p[1] * p[0] ** 2)) for p in pr if p is not None)
-
-    n_unknowns = q * n_frames + 3 * int(free_points.sum()) + g
-    m_rows = None
-    history, growth = [], 0
-    for iteration in range(1, max_iter + 1):
-        eq = linearize(frames, points, glob)
-        pr = priors((frames, points, glob))
-        value = vtpv(eq, pr)
-        if not np.isfinite(value):
-            raise ConvergenceError(f"the correction equations became NaN/inf at iteration {iteration}", history)
-        if m_rows is None:
-            m_rows = eq.L.size + sum(int((w > 0).sum()) for _, w in obs if w is not None)
-            if m_rows <= n_unknowns:
-                raise InputError(f"{m_rows} correction equations cannot determine {n_unknowns} unknowns (M ≤ N)")
-        sol = solve_block_normal_equations_global(eq, n_frames, n_points, frame_prior=pr[0], point_prior=pr[1],
-                                                  global_prior=pr[2], free_points=free_points, rcond=rcond,
-                                                  global_names=global_names, frame_names=frame_names)
-        step = np.array([np.abs(sol.delta1).max(initial=0.0), np.abs(sol.delta2).max(initial=0.0),
-                         np.abs(sol.delta3).max(initial=0.0)])
-        growth = _record_block_step(history, iteration, step, value, progress, growth)
-        frames, points, glob = frames + sol.delta1, points + sol.delta2, glob + sol.delta3
-        if not (np.all(np.isfinite(frames)) and np.all(np.isfinite(points)) and np.all(np.isfinite(glob))):
-            raise ConvergenceError(f"the iteration produced NaN/inf at step {iteration}", history)
-        if all(np.all(np.abs(d) < t) for d, t in zip((sol.delta1, sol.delta2, sol.delta3), tols)):
-            break
-    else:
-        raise ConvergenceError(f"no convergence in {max_iter} iterations: last max |δ| = {step.tolist()}", history)
-
-    eq = linearize(frames, points, glob)
-    pr = priors((frames, points, glob))
-    dof = m_rows - n_unknowns
-    mu = float(np.sqrt(vtpv(eq, pr) / dof))
-    out = GlobalBlockAdjustment(frames=frames, points=points, residuals=eq.L.copy(),
-                                frame_residuals=np.zeros_like(frames) if pr[0] is None else pr[0][0],
-                                point_residuals=np.zeros_like(points) if pr[1] is None else pr[1][0],
-                                mu=mu, dof=dof, frames_std=None, points_std=None, Q1=None, Q2=None,
-                                iterations=len(history), converged=True, history=history, globals=glob,
-                                global_residuals=np.zeros_like(glob) if pr[2] is None else pr[2][0])
-    if covariance:
-        sol = solve_block_normal_equations_global(eq, n_frames, n_points, frame_prior=pr[0], point_prior=pr[1],
-                                                  global_prior=pr[2], free_points=free_points, covariance=True,
-                                                  rcond=rcond, global_names=global_names, frame_names=frame_names)
-        out.Q1, out.Q2, out.Q3, out.Q13, out.Q23 = sol.Q1, sol.Q2, sol.Q3, sol.Q13, sol.Q23
-        out.frames_std = mu * np.sqrt(np.einsum("kii->ki", sol.Q1))
-        out.points_std = mu * np.sqrt(np.einsum("kii->ki", sol.Q2))
-        out.globals_std = mu * np.sqrt(np.diag(sol.Q3))
-    return out
-
-
 def global_block_equations_dense(eq: GlobalBlockCorrectionEquations, n_frames: int, n_points: int,
                                  free_points=None):
     """Dense (B, L, P) of :class:`GlobalBlockCorrectionEquations`: columns images | globals | free points.
 
     The column layout of fig. 3.18 (exterior orientation, mounting elements, tie points); for
     checks and figures of small blocks only.
+
+    Parameters
+    ----------
+    eq : GlobalBlockCorrectionEquations
+    n_frames, n_points : int
+    free_points : bool array, optional
+
+    Returns
+    -------
+    B, L, P : ndarray
+        As :func:`block_equations_dense`, with the g global columns after the images.
+
+    Raises
+    ------
+    InputError
+        Shapes that do not match, NaN/inf.
+
+    References
+    ----------
+    Chibunichev (2022), §3.6, eq. (3.6.3); §3.8, eq. (3.8.15); fig. 3.18.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> frame, point = np.repeat([0, 1], 5), np.tile(np.arange(5), 2)
+    >>> eq = BlockCorrectionEquations(frame, point, rng.normal(size=(10, 2, 6)), rng.normal(size=(10, 2, 3)),
+    ...                               rng.normal(size=(10, 2)))
+    >>> geq = GlobalBlockCorrectionEquations(eq.frame, eq.point, eq.B1, eq.B2, eq.L, B3=np.ones((10, 2, 1)))
+    >>> global_block_equations_dense(geq, 2, 5)[0].shape
+    (20, 28)
     """
     B0, L, P = block_equations_dense(eq, n_frames, n_points, free_points)
     m, r, q = eq.B1.shape

@@ -11,7 +11,7 @@ import sympy as sp
 from photolib import synthetic
 from photolib.bundle import bundle_adjustment, bundle_correction_equations, check_point_statistics
 from photolib.derivations import bundle_collinearity_model, collinearity_model, compile_fused
-from photolib.errors import ConvergenceError, DegenerateGeometryError, InputError
+from photolib.errors import PointBehindCameraError, ConvergenceError, DegenerateGeometryError, InputError
 from photolib.lsq import (block_equations_dense, solve_block_normal_equations, solve_normal_equations,
                           solve_partitioned_normal_equations)
 
@@ -258,9 +258,15 @@ def test_disconnected_block_is_rejected(tiny_block):
 
 
 def test_divergence_raises_convergence_error(tiny_block):
+    # start values this far off put points behind cameras already: that is named as such before iterating
     cams0, pts0 = tiny_block.start_values(seed=1, angle_sigma=np.radians(40), centre_sigma=800)
-    with pytest.raises(ConvergenceError):
+    with pytest.raises(PointBehindCameraError) as info:
         _run(tiny_block, cameras0=cams0, points0=pts0, max_iter=8)
+    assert info.value.points
+    # from start values in front of every camera but too few iterations: ConvergenceError
+    cams0, pts0 = tiny_block.start_values(seed=1)
+    with pytest.raises(ConvergenceError):
+        _run(tiny_block, cameras0=cams0, points0=pts0, max_iter=1)
 
 
 @pytest.mark.parametrize("bad, match", [
