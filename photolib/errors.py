@@ -1,7 +1,10 @@
-"""Exceptions raised by photolib.
+"""Exceptions and warnings raised by photolib — shared by every chapter (Chapters 1–4 and the appendices).
 
 Every failure names its cause: bad input (NaN, wrong shapes, too few points), a degenerate
-geometry that makes a problem singular, or an iteration that did not converge.
+geometry that makes a problem singular (collinear control in a resection, §1.8; parallel rays
+in an intersection, §2.4; a datum defect in a block, §3.5), a point behind a camera, or an
+iteration that did not converge (the least-squares engine of §1.8, (1.8.5)–(1.8.10)).
+Callers react to the class, never to the message text.
 """
 
 
