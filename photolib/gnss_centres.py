@@ -1,4 +1,5 @@
-"""Stereo model of an isolated pair whose projection centres were measured by GNSS.
+"""Stereo model of an isolated pair whose projection centres were measured by GNSS — the GNSS
+appendix of the book (after Chapter 2, §2.6–§2.11; ``chapters/appendix_gnss_centres.ipynb``).
 
 Implements the method of N.F. Dobrynin and T.M. Pimshina, «Использование космических средств
 позиционирования при обработке аэро- и космической информации» (seed
@@ -38,10 +39,15 @@ import numpy as np
 
 from . import derivations
 from .camera import as_points
-from .errors import ConvergenceError, DegenerateGeometryError, InputError
+from .errors import ConvergenceError, DegenerateGeometryError, InputError, PointBehindCameraError
 from .image_pair import intersection_scale
 from .lsq import Adjustment, AdjustmentView, gauss_newton
 from .rotation import rot_x, rot_y, rot_z
+
+__all__ = ["ANGLE_NAMES", "PARTIALS", "rotation_aok", "geodetic_to_image_frame", "image_frame_to_geodetic",
+           "image_space_vectors", "project", "ground_from_image", "base_components", "coplanarity_residuals",
+           "base_direction_angle", "initial_chi", "correction_equations", "orient_pair", "iteration_history",
+           "intersection_forms", "space_intersection", "build_model", "synthetic_pair"]
 
 ANGLE_NAMES = ("alpha1", "omega1", "chi1", "alpha2", "omega2", "chi2")
 """The six unknowns of (5), in the paper's order."""
@@ -55,6 +61,32 @@ def rotation_aok(alpha, omega, chi) -> np.ndarray:
 
     R_Y(α) turns by −α in the right-handed sense (so that a₃ = −sin α cos ω as printed); A maps
     image (camera) coordinates to the image-space frame X* Y* Z*. Vectorised over the angles.
+
+    Parameters
+    ----------
+    alpha, omega, chi : float or arrays
+        The angles (rad).
+
+    Returns
+    -------
+    (3, 3) or (..., 3, 3) ndarray
+        A.
+
+    Raises
+    ------
+    InputError
+        NaN/inf angles.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eq. (6); Chibunichev (2022), §1.3.
+
+    Examples
+    --------
+    >>> rotation_aok(0.0, 0.0, 0.0)
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
     """
     return rot_y(-np.asarray(alpha, dtype=float)) @ rot_x(omega) @ rot_z(chi)
 
@@ -62,7 +94,31 @@ def rotation_aok(alpha, omega, chi) -> np.ndarray:
 def geodetic_to_image_frame(v) -> np.ndarray:
     """(ΔX, ΔY, ΔZ) geodetic (X north, Y east) → (ΔY, ΔX, ΔZ) in the image-space frame (line 48).
 
-    The swap is its own inverse, so it also converts back.
+    The swap is its own inverse, so it also converts back (``image_frame_to_geodetic`` is the same function).
+
+    Parameters
+    ----------
+    v : (..., 3) array
+        Vectors.
+
+    Returns
+    -------
+    (..., 3) ndarray
+        The swapped vectors.
+
+    Raises
+    ------
+    InputError
+        Not 3-vectors, NaN/inf.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), line 48.
+
+    Examples
+    --------
+    >>> geodetic_to_image_frame([1.0, 2.0, 3.0])
+    array([2., 1., 3.])
     """
     v = np.asarray(v, dtype=float)
     if v.shape[-1] != 3:
@@ -96,7 +152,36 @@ def _camera(f, x0, y0):
 
 
 def image_space_vectors(xy, angles, f, x0=0.0, y0=0.0) -> np.ndarray:
-    """(X*, Y*, Z*) = A(α, ω, χ)·(x − x₀, y − y₀, −f)ᵀ, equation (4), one row per point."""
+    """(X*, Y*, Z*) = A(α, ω, χ)·(x − x₀, y − y₀, −f)ᵀ, equation (4), one row per point.
+
+    Parameters
+    ----------
+    xy : (n, 2) array
+        Image coordinates (mm).
+    angles : 3 angles
+        α, ω, χ (rad).
+    f, x0, y0 : float
+        Interior orientation (mm).
+
+    Returns
+    -------
+    (n, 3) ndarray
+        The vectors.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf, f ≤ 0.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eq. (4).
+
+    Examples
+    --------
+    >>> image_space_vectors([[10.0, 5.0]], [0.0, 0.0, 0.0], 100.0)
+    array([[  10.,    5., -100.]])
+    """
     xy = as_points(xy, 2, "image coordinates")
     a = _angles(angles, 3, "image angles (α, ω, χ)")
     f, x0, y0 = _camera(f, x0, y0)
@@ -107,8 +192,39 @@ def image_space_vectors(xy, angles, f, x0=0.0, y0=0.0) -> np.ndarray:
 def project(points, S, angles, f, x0=0.0, y0=0.0) -> np.ndarray:
     """Image coordinates of geodetic points: the inverse of (3)/(4) (for synthetic data and checks).
 
-    x = x₀ − f q₁/q₃, y = y₀ − f q₂/q₃ with q = Aᵀ·(ΔY, ΔX, ΔZ). Points behind the camera raise
-    :class:`DegenerateGeometryError`.
+    x = x₀ − f q₁/q₃, y = y₀ − f q₂/q₃ with q = Aᵀ·(ΔY, ΔX, ΔZ).
+
+    Parameters
+    ----------
+    points : (n, 3) array
+        Geodetic X, Y, Z (m).
+    S : 3-vector
+        Projection centre.
+    angles : 3 angles
+        α, ω, χ (rad).
+    f, x0, y0 : float
+        Interior orientation (mm).
+
+    Returns
+    -------
+    (n, 2) ndarray
+        Image coordinates (mm).
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf.
+    PointBehindCameraError
+        Points behind the camera.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eqs. (3), (4).
+
+    Examples
+    --------
+    >>> project([[100.0, 50.0, 0.0]], [0.0, 0.0, 1000.0], [0.0, 0.0, 0.0], 100.0)
+    array([[ 5., 10.]])
     """
     P = as_points(points, 3, "geodetic points")
     S = _centre(S, "projection centre")
@@ -116,24 +232,93 @@ def project(points, S, angles, f, x0=0.0, y0=0.0) -> np.ndarray:
     f, x0, y0 = _camera(f, x0, y0)
     q = geodetic_to_image_frame(P - S) @ rotation_aok(*a)
     if np.any(q[:, 2] >= 0):
-        raise DegenerateGeometryError(f"points {np.flatnonzero(q[:, 2] >= 0).tolist()} are not in front of the camera")
+        bad = np.flatnonzero(q[:, 2] >= 0)
+        raise PointBehindCameraError(f"points {bad.tolist()} are not in front of the camera", points=bad)
     return np.column_stack([x0 - f * q[:, 0] / q[:, 2], y0 - f * q[:, 1] / q[:, 2]])
 
 
 def ground_from_image(xy, S, angles, Z, f, x0=0.0, y0=0.0) -> np.ndarray:
     """(X, Y) of points of known height Z by the collinearity equations (3).
 
-    Y = (Z − Z_S)X*/Z* + Y_S, X = (Z − Z_S)Y*/Z* + X_S, with X*, Y*, Z* of (4). Returns (n, 2) X, Y.
+    Y = (Z − Z_S)X*/Z* + Y_S, X = (Z − Z_S)Y*/Z* + X_S, with X*, Y*, Z* of (4).
+
+    Parameters
+    ----------
+    xy : (n, 2) array
+        Image coordinates (mm).
+    S : 3-vector
+        Projection centre.
+    angles : 3 angles
+        α, ω, χ (rad).
+    Z : float or (n,) array
+        Heights (m).
+    f, x0, y0 : float
+        Interior orientation (mm).
+
+    Returns
+    -------
+    (n, 2) ndarray
+        Geodetic X, Y (m).
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf.
+    DegenerateGeometryError
+        A horizontal ray.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eqs. (3), (4).
+
+    Examples
+    --------
+    >>> ground_from_image([[5.0, 10.0]], [0.0, 0.0, 1000.0], [0.0, 0.0, 0.0], 0.0, 100.0)
+    array([[100.,  50.]])
     """
     r = image_space_vectors(xy, angles, f, x0, y0)
     S = _centre(S, "projection centre")
-    Z = np.broadcast_to(np.asarray(Z, dtype=float), (len(r),))
+    try:
+        Z = np.broadcast_to(np.asarray(Z, dtype=float), (len(r),))
+    except (TypeError, ValueError):
+        raise InputError(f"Z: expected one height or {len(r)} heights, got {np.shape(Z)}") from None
+    if not np.all(np.isfinite(Z)):
+        raise InputError("the heights Z contain NaN or inf")
+    if np.any(r[:, 2] == 0):
+        raise DegenerateGeometryError("a ray is horizontal (Z* = 0): it does not meet a level of known height")
     k = (Z - S[2]) / r[:, 2]
     return np.column_stack([k * r[:, 1] + S[0], k * r[:, 0] + S[1]])
 
 
 def base_components(S1, S2) -> np.ndarray:
-    """(B_X, B_Y, B_Z) = S₂ − S₁ of (2) (geodetic)."""
+    """(B_X, B_Y, B_Z) = S₂ − S₁ of (2) (geodetic).
+
+    Parameters
+    ----------
+    S1, S2 : 3-vectors
+        Projection centres.
+
+    Returns
+    -------
+    (3,) ndarray
+        The base.
+
+    Raises
+    ------
+    InputError
+        NaN/inf, wrong shapes.
+    DegenerateGeometryError
+        Zero base.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eq. (2).
+
+    Examples
+    --------
+    >>> base_components([0.0, 0, 0], [10.0, 20, 1])
+    array([10., 20.,  1.])
+    """
     B = _centre(S2, "centre S2") - _centre(S1, "centre S1")
     if not np.any(B):
         raise DegenerateGeometryError("the base is zero: both projection centres coincide")
@@ -141,7 +326,41 @@ def base_components(S1, S2) -> np.ndarray:
 
 
 def coplanarity_residuals(angles, xy1, xy2, S1, S2, f, x0=0.0, y0=0.0) -> np.ndarray:
-    """φ of (1) for each pair of corresponding points (m·mm²): det[[B_Y, B_X, B_Z], r₁*, r₂*]."""
+    """φ of (1) for each pair of corresponding points (m·mm²): det[[B_Y, B_X, B_Z], r₁*, r₂*].
+
+    Parameters
+    ----------
+    angles : 6 angles
+        α₁, ω₁, χ₁, α₂, ω₂, χ₂ (rad).
+    xy1, xy2 : (n, 2) arrays
+        Corresponding image points (mm).
+    S1, S2 : 3-vectors
+        Projection centres.
+    f, x0, y0 : float
+        Interior orientation (mm).
+
+    Returns
+    -------
+    (n,) ndarray
+        φ.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, different counts, NaN/inf.
+    DegenerateGeometryError
+        Zero base.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eqs. (1), (2).
+
+    Examples
+    --------
+    >>> pair = synthetic_pair(30.0, seed=3)
+    >>> float(abs(coplanarity_residuals(pair.angles, pair.xy1, pair.xy2, pair.S1, pair.S2, pair.f)).max()) < 1e-6
+    True
+    """
     a = _angles(angles, 6, "angles (α₁, ω₁, χ₁, α₂, ω₂, χ₂)")
     r1 = image_space_vectors(xy1, a[:3], f, x0, y0)
     r2 = image_space_vectors(xy2, a[3:], f, x0, y0)
@@ -152,7 +371,34 @@ def coplanarity_residuals(angles, xy1, xy2, S1, S2, f, x0=0.0, y0=0.0) -> np.nda
 
 # --- initial approximations (lines 171–179) ---------------------------------------------------------
 def base_direction_angle(S1, S2) -> float:
-    """Direction angle (azimuth from north, clockwise, radians in [0, 2π)) of the base S₁S₂."""
+    """Direction angle (azimuth from north, clockwise, radians in [0, 2π)) of the base S₁S₂.
+
+    Parameters
+    ----------
+    S1, S2 : 3-vectors
+        Projection centres.
+
+    Returns
+    -------
+    float
+        The direction angle (rad).
+
+    Raises
+    ------
+    InputError
+        NaN/inf.
+    DegenerateGeometryError
+        Zero or vertical base.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), lines 171–179.
+
+    Examples
+    --------
+    >>> round(float(np.degrees(base_direction_angle([0.0, 0, 0], [1.0, 1.0, 0]))), 6)
+    45.0
+    """
     B = base_components(S1, S2)
     if np.hypot(B[0], B[1]) == 0:
         raise DegenerateGeometryError("the base is vertical: its direction angle (and χ) is undefined")
@@ -166,6 +412,32 @@ def initial_chi(S1, S2) -> float:
     to right" (the right image has the larger Y_S), so α ∈ [0°, 180°]; for other bases the same
     rule, (90° − α) mod 360°, is applied. With α = ω = 0 it makes the image x axis point along
     the base.
+
+    Parameters
+    ----------
+    S1, S2 : 3-vectors
+        Projection centres.
+
+    Returns
+    -------
+    float
+        χ (rad).
+
+    Raises
+    ------
+    InputError
+        NaN/inf.
+    DegenerateGeometryError
+        Zero or vertical base.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), lines 171–179.
+
+    Examples
+    --------
+    >>> round(float(np.degrees(initial_chi([0.0, 0, 0], [1.0, 1.0, 0]))), 6)
+    45.0
     """
     az = np.degrees(base_direction_angle(S1, S2))
     chi = 90.0 - az if az < 90.0 else 450.0 - az
@@ -173,7 +445,7 @@ def initial_chi(S1, S2) -> float:
 
 
 # --- the joint adjustment (5) + (9) -------------------------------------------------------------------
-@dataclass
+@dataclass(repr=False)
 class GnssOrientation(AdjustmentView):
     """The six angles of the pair from (5) and (9), with the adjustment of the engine of §1.8."""
 
@@ -184,7 +456,15 @@ class GnssOrientation(AdjustmentView):
     ground: np.ndarray = field(repr=False, default=None)         # (k, 2, 2) (Y) − Y, (X) − X per control & image (m)
 
     def as_dict(self) -> dict:
+        """{"alpha1": α₁, …, "chi2": χ₂} in radians."""
         return dict(zip(ANGLE_NAMES, map(float, self.angles)))
+
+    def __repr__(self) -> str:
+        labels = ("α₁", "ω₁", "χ₁", "α₂", "ω₂", "χ₂")
+        std = self.adjustment.std
+        parts = [f"{lab} = {np.degrees(v):+.4f}° ± {np.degrees(s):.4f}°" for lab, v, s in zip(labels, self.angles, std)]
+        return (f"GnssOrientation ({self.partials} partials), {self.adjustment.iterations} iterations, "
+                f"μ = {self.adjustment.mu:.3g}\n  " + "\n  ".join(parts))
 
 
 def _check_pair(xy1, xy2, what):
@@ -201,9 +481,48 @@ def correction_equations(angles, xy1, xy2, S1, S2, control_xyz, control_xy1, con
 
     Rows: one per tie point (coefficients a…m, free term l = φ), then for every control point
     l_y₁, l_x₁ (image 1: a′, b′, c′ / d′, e′, m′) and l_y₂, l_x₂ (image 2: a″…m″), each with zeros
-    for the other image's angles. ``partials="derived"`` takes the coefficients from the sympy
-    models; ``"printed"`` evaluates the paper's printed (5), (8), (9) instead (the free terms are
-    the same).
+    for the other image's angles.
+
+    Parameters
+    ----------
+    angles : 6 angles
+        The approximation (rad).
+    xy1, xy2 : (n, 2) arrays
+        Tie points (mm).
+    S1, S2 : 3-vectors
+        Projection centres.
+    control_xyz, control_xy1, control_xy2 : arrays
+        Control points and their image coordinates.
+    f, x0, y0 : float
+        Interior orientation (mm).
+    partials : {"derived", "printed"}
+        ``"derived"`` takes the coefficients from the sympy models; ``"printed"`` evaluates the
+        paper's printed (5), (8), (9) instead (the free terms are the same).
+
+    Returns
+    -------
+    B : (n + 4k, 6) ndarray
+        Coefficients.
+    L : (n + 4k,) ndarray
+        Free terms.
+
+    Raises
+    ------
+    InputError
+        Unknown partials, NaN/inf, bad shapes.
+    DegenerateGeometryError
+        Zero base.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eqs. (5), (8), (9).
+
+    Examples
+    --------
+    >>> pair = synthetic_pair(30.0, seed=3)
+    >>> B, L = correction_equations(pair.angles, pair.xy1, pair.xy2, pair.S1, pair.S2, *pair.control_args, pair.f)
+    >>> B.shape
+    (13, 6)
     """
     if partials not in PARTIALS:
         raise InputError(f"partials must be 'derived' or 'printed', got {partials!r}")
@@ -261,6 +580,27 @@ def orient_pair(xy1, xy2, S1, S2, control_xyz, control_xy1, control_xy2, f, x0=0
     Returns
     -------
     GnssOrientation
+        The six angles (rad) with μ, m_j, r_ij and the residuals of (5) and (9).
+
+    Raises
+    ------
+    InputError
+        Fewer than 5 tie points, no control point, mismatched counts, NaN/inf, bad options.
+    DegenerateGeometryError
+        Zero or vertical base, a singular system.
+    ConvergenceError
+        No convergence within ``max_iter``.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eqs. (5), (9), lines 171–179, 200; Chibunichev (2022), §1.8.
+
+    Examples
+    --------
+    >>> pair = synthetic_pair(30.0, seed=3)
+    >>> ori = orient_pair(*pair.args)
+    >>> bool(np.allclose(ori.angles, pair.angles, atol=1e-9))
+    True
     """
     xy1, xy2 = _check_pair(xy1, xy2, "tie points")
     if len(xy1) < 5:
@@ -307,6 +647,32 @@ def iteration_history(*args, **kwargs) -> IterationHistory:
 
     Non-convergence within ``max_iter`` (:class:`ConvergenceError`) and a singular system on the
     way (:class:`DegenerateGeometryError`) are recorded, not raised.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The arguments of :func:`orient_pair`.
+
+    Returns
+    -------
+    IterationHistory
+        Converged or not, iterations, max |δ| per iteration, the last angles.
+
+    Raises
+    ------
+    InputError
+        Bad input (raised, not recorded).
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eqs. (5), (9).
+
+    Examples
+    --------
+    >>> pair = synthetic_pair(30.0, seed=3)
+    >>> h = iteration_history(*pair.args)
+    >>> h.converged
+    True
     """
     try:
         result = orient_pair(*args, **kwargs)
@@ -325,9 +691,35 @@ def intersection_forms(r1, r2, B) -> tuple:
 
     N = (B_X Z₂* − B_Z Y₂*)/(Y₁*Z₂* − Z₁*Y₂*) = (B_Z X₂* − B_Y Z₂*)/(Z₁*X₂* − X₁*Z₂*)
       = (B_Y Y₂* − B_X X₂*)/(X₁*Y₂* − Y₁*X₂*).
-    ``r1``, ``r2`` are image-space vectors (4), ``B`` = (B_X, B_Y, B_Z) geodetic (2). They are the
-    components of N(r₁ × r₂) = b × r₂ with b = (B_Y, B_X, B_Z): form k is 0/0 when the k-th
-    component of r₁ × r₂ vanishes.
+    They are the components of N(r₁ × r₂) = b × r₂ with b = (B_Y, B_X, B_Z): form k is 0/0 when
+    the k-th component of r₁ × r₂ vanishes.
+
+    Parameters
+    ----------
+    r1, r2 : (n, 3) arrays
+        Image-space vectors (4).
+    B : 3-vector
+        (B_X, B_Y, B_Z) geodetic (2).
+
+    Returns
+    -------
+    (numerators, denominators)
+        Two (n, 3) arrays.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), line 212.
+
+    Examples
+    --------
+    >>> num, den = intersection_forms([[0.0, 0, -1]], [[-0.4, 0, -1]], [0.0, 400.0, 0])
+    >>> float(num[0, 1] / den[0, 1])
+    1000.0
     """
     r1 = as_points(r1, 3, "image-space vectors of image 1")
     r2 = as_points(r2, 3, "image-space vectors of image 2")
@@ -343,11 +735,47 @@ def space_intersection(xy1, xy2, S1, S2, angles, f, x0=0.0, y0=0.0, *, form: int
     """Geodetic X, Y, Z of points from the oriented pair (line 212): Y = N X₁* + Y_S1,
     X = N Y₁* + X_S1, Z = N Z₁* + Z_S1.
 
-    ``form`` = 1, 2 or 3 forces one of the three printed expressions of N (a form whose
-    denominator vanishes — a 0/0 case — raises :class:`DegenerateGeometryError`); ``None``
-    (default) takes, point by point, the form with the largest |denominator|. The division is
-    done by :func:`photolib.image_pair.intersection_scale` (``method="component"``), whose
-    components are exactly these three forms when the base is written in the image-space frame.
+    The division is done by :func:`photolib.image_pair.intersection_scale` (``method="component"``),
+    whose components are exactly the three printed forms when the base is written in the image-space frame.
+
+    Parameters
+    ----------
+    xy1, xy2 : (n, 2) arrays
+        Corresponding image points (mm).
+    S1, S2 : 3-vectors
+        Projection centres.
+    angles : 6 angles
+        α₁, ω₁, χ₁, α₂, ω₂, χ₂ (rad).
+    f, x0, y0 : float
+        Interior orientation (mm).
+    form : {None, 1, 2, 3}
+        Force one of the three printed expressions of N; ``None`` takes, point by point, the
+        form with the largest |denominator|.
+
+    Returns
+    -------
+    (n, 3) ndarray
+        Geodetic X, Y, Z (m).
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf.
+    DegenerateGeometryError
+        Zero base, parallel rays, a forced 0/0 form.
+    PointBehindCameraError
+        Rays that meet behind camera 1.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), line 212; Chibunichev (2022), §2.4, eq. (2.4.12).
+
+    Examples
+    --------
+    >>> pair = synthetic_pair(30.0, seed=3)
+    >>> P = space_intersection(pair.xy1, pair.xy2, pair.S1, pair.S2, pair.angles, pair.f)
+    >>> bool(np.allclose(P, pair.ground, atol=1e-6))
+    True
     """
     a = _angles(angles, 6, "angles (α₁, ω₁, χ₁, α₂, ω₂, χ₂)")
     xy1, xy2 = _check_pair(xy1, xy2, "points")
@@ -357,20 +785,57 @@ def space_intersection(xy1, xy2, S1, S2, angles, f, x0=0.0, y0=0.0, *, form: int
     b = geodetic_to_image_frame(base_components(S1, S2))
     N = intersection_scale(b, r1, r2, method="component", formula=form)
     if np.any(N <= 0):
-        raise DegenerateGeometryError(f"the rays of points {np.flatnonzero(N <= 0).tolist()} meet behind camera 1")
+        bad = np.flatnonzero(N <= 0)
+        raise PointBehindCameraError(f"the rays of points {bad.tolist()} meet behind camera 1", points=bad)
     return S1 + N[:, None] * image_frame_to_geodetic(r1)
 
 
-@dataclass
+@dataclass(repr=False)
 class GnssModel:
     """The stereo model: oriented pair and geodetic coordinates of all tie points."""
 
     orientation: GnssOrientation
     points: np.ndarray             # (n, 3) geodetic X, Y, Z of the tie points
 
+    def __repr__(self) -> str:
+        return f"GnssModel: {len(self.points)} tie points\n  " + repr(self.orientation).replace("\n", "\n  ")
+
 
 def build_model(xy1, xy2, S1, S2, control_xyz, control_xy1, control_xy2, f, x0=0.0, y0=0.0, **kwargs) -> GnssModel:
-    """:func:`orient_pair` followed by :func:`space_intersection` of the tie points (the paper's whole method)."""
+    """:func:`orient_pair` followed by :func:`space_intersection` of the tie points (the paper's whole method).
+
+    Parameters
+    ----------
+    xy1, xy2, S1, S2, control_xyz, control_xy1, control_xy2, f, x0, y0
+        As in :func:`orient_pair`.
+    **kwargs
+        Options of :func:`orient_pair`.
+
+    Returns
+    -------
+    GnssModel
+        The orientation and the geodetic coordinates of the tie points.
+
+    Raises
+    ------
+    InputError
+        Bad input.
+    DegenerateGeometryError
+        Zero base, singular system.
+    ConvergenceError
+        No convergence.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eqs. (1)–(9), line 212.
+
+    Examples
+    --------
+    >>> pair = synthetic_pair(30.0, seed=3)
+    >>> m = build_model(*pair.args)
+    >>> bool(np.allclose(m.points, pair.ground, atol=1e-6))
+    True
+    """
     ori = orient_pair(xy1, xy2, S1, S2, control_xyz, control_xy1, control_xy2, f, x0, y0, **kwargs)
     return GnssModel(ori, space_intersection(xy1, xy2, S1, S2, ori.angles, f, x0, y0))
 
@@ -413,26 +878,60 @@ def synthetic_pair(azimuth_deg: float, *, seed: int = 0, f: float = 100.0, H: fl
     nadirs and the midpoint, across at 0 and ±``across`` m, heights 150 m ± ``relief``
     (seeded). True α, ω uniform in ±``tilt_deg``, χ = initial χ ± ``chi_offset_deg``. Optional
     Gaussian ``image_noise`` (mm). Tie point ``control`` (default the first) doubles as the
-    control point(s).
+    control point(s). Drawn by :func:`photolib.synthetic.stereo_pair` with the α–ω–χ projection
+    :func:`project` (our stand-in: the paper prints no data).
+
+    Parameters
+    ----------
+    azimuth_deg : float
+        Direction angle of the base (°).
+    seed : int
+        Random seed.
+    f, H, base, dZ_S : float
+        Focal length (mm), flying height, base, height difference of the centres (m).
+    tilt_deg, chi_offset_deg : float
+        Spread of the true angles (°).
+    across, relief : float
+        Across-track offset and relief of the tie points (m).
+    image_noise : float
+        Gaussian image noise (mm).
+    control : tuple of int
+        Tie points used as control.
+    level : bool
+        Equal heights of the centres.
+
+    Returns
+    -------
+    SyntheticPair
+        Centres, true angles, ground points, image coordinates.
+
+    Raises
+    ------
+    InputError
+        Negative relief or noise, NaN.
+
+    References
+    ----------
+    Dobrynin & Pimshina (n.d.), eqs. (3), (4), lines 171–179.
+
+    Examples
+    --------
+    >>> pair = synthetic_pair(30.0, seed=3)
+    >>> pair.xy1.shape, pair.control
+    ((9, 2), (0,))
     """
-    rng = np.random.default_rng(seed)
+    from .synthetic import stereo_pair
+
     az = np.radians(azimuth_deg)
     u = np.array([np.cos(az), np.sin(az), 0.0])            # along the base (geodetic)
     v = np.array([-np.sin(az), np.cos(az), 0.0])           # across
     S1 = np.array([5000.0, 3000.0, 150.0 + H])
     S2 = S1 + base * u + np.array([0.0, 0.0, 0.0 if level else dZ_S])
     chi0 = initial_chi(S1, S2)
-    t = np.radians(tilt_deg)
-    c = np.radians(chi_offset_deg)
-    angles = np.array([*rng.uniform(-t, t, 2), chi0 + rng.uniform(-c, c), *rng.uniform(-t, t, 2),
-                       chi0 + rng.uniform(-c, c)])
     along = np.array([0.0, 0.5, 1.0]) * base
     grid = [S1[:2] + a * u[:2] + s * across * v[:2] for a in along for s in (-1.0, 0.0, 1.0)]
-    Z = 150.0 + rng.uniform(-relief, relief, len(grid))
-    ground = np.column_stack([np.array(grid), Z])
-    xy1 = project(ground, S1, angles[:3], f)
-    xy2 = project(ground, S2, angles[3:], f)
-    if image_noise:
-        xy1 = xy1 + rng.normal(0, image_noise, xy1.shape)
-        xy2 = xy2 + rng.normal(0, image_noise, xy2.shape)
-    return SyntheticPair(S1, S2, angles, ground, xy1, xy2, f, control=tuple(control))
+    pair = stereo_pair(seed=seed, centres=(S1, S2), angles=((0.0, 0.0, chi0), (0.0, 0.0, chi0)),
+                       angle_spread=np.radians([tilt_deg, tilt_deg, chi_offset_deg]), ground_xy=np.array(grid),
+                       mean_height=150.0, relief=relief, sigma=image_noise,
+                       projector=lambda P, S, a: project(P, S, a, f))
+    return SyntheticPair(S1, S2, pair.angles.ravel(), pair.points, pair.xy1, pair.xy2, f, control=tuple(control))

@@ -58,9 +58,19 @@ from dataclasses import dataclass
 import numpy as np
 
 from .camera import ExteriorOrientation, InteriorOrientation, as_point_pairs, as_points
-from .errors import DegenerateGeometryError, InputError
+from .image_pair import _check_type
+from .errors import DegenerateGeometryError, InputError, PointBehindCameraError
 from .lsq import Adjustment, accuracy, gauss_newton, point_weights, solve_normal_equations
 from .rotation import check_order, rotation_angles
+
+__all__ = ["DLT_NAMES", "HOMOGRAPHY_NAMES", "LAYOUTS", "D_REFLECTION", "normalizing_transform",
+           "nearest_rotation", "calibration_matrix", "projection_matrix", "dlt_from_projection",
+           "projection_from_dlt", "dlt_from_orientation", "dlt_project", "orientation_from_dlt", "dlt_design",
+           "dlt_resection", "dlt_intersection", "skew_matrix", "normalized_image_coordinates",
+           "essential_from_orientation", "fundamental_from_orientation", "fundamental_matrix",
+           "essential_matrix", "essential_from_fundamental", "epipolar_residuals", "sampson_distance",
+           "epipolar_lines", "essential_candidates", "decompose_essential", "relative_orientation_projective",
+           "ransac_fundamental", "apply_homography", "homography_dlt", "homography_lsq"]
 
 DLT_NAMES = tuple(f"L{i}" for i in range(1, 12))
 HOMOGRAPHY_NAMES = tuple(f"h{i}" for i in range(1, 9))
@@ -115,10 +125,39 @@ def _pair(xy1, xy2, minimum: int, what: str):
 def normalizing_transform(points) -> np.ndarray:
     """Hartley's conditioning: move the centroid to the origin, mean distance √dim.
 
-    Returns the (dim+1)×(dim+1) homogeneous matrix T with x̃ = T·x. Raises
-    :class:`DegenerateGeometryError` if all points coincide.
+    Parameters
+    ----------
+    points : (n, 2) or (n, 3) array
+        Points to condition.
+
+    Returns
+    -------
+    (dim+1, dim+1) ndarray
+        The homogeneous matrix T with x̃ = T·x.
+
+    Raises
+    ------
+    InputError
+        Wrong shape, NaN/inf.
+    DegenerateGeometryError
+        All points coincide.
+
+    References
+    ----------
+    Chibunichev (2022), §4.2; Hartley & Zisserman, Multiple View Geometry (2003), §4.4.4.
+
+    Examples
+    --------
+    >>> normalizing_transform([[0.0, 0.0], [2.0, 0.0]])
+    array([[ 1.41421356,  0.        , -1.41421356],
+           [ 0.        ,  1.41421356, -0.        ],
+           [ 0.        ,  0.        ,  1.        ]])
     """
     points = np.asarray(points, dtype=float)
+    if points.ndim != 2 or points.shape[1] not in (2, 3) or len(points) == 0:
+        raise InputError(f"normalizing_transform: expected an (n, 2) or (n, 3) array of points, got shape {points.shape}")
+    if not np.all(np.isfinite(points)):
+        raise InputError("normalizing_transform: the points contain NaN or inf")
     dim = points.shape[1]
     centroid = points.mean(axis=0)
     spread = np.mean(np.linalg.norm(points - centroid, axis=1))
@@ -139,7 +178,36 @@ def _null_vector(M):
 
 
 def nearest_rotation(M) -> np.ndarray:
-    """The rotation matrix closest to M in the Frobenius norm (SVD, det = +1)."""
+    """The rotation matrix closest to M in the Frobenius norm (SVD, det = +1).
+
+    The result does not depend on the signs the SVD picks (U·Vᵀ is invariant).
+
+    Parameters
+    ----------
+    M : (3, 3) array
+        A nearly orthogonal matrix.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The nearest rotation.
+
+    Raises
+    ------
+    InputError
+        Not a finite 3×3 matrix.
+
+    References
+    ----------
+    Chibunichev (2022), §4.2, eq. (4.2.6).
+
+    Examples
+    --------
+    >>> nearest_rotation([[1.0, 0.01, 0], [0, 1, 0], [0, 0, 1]]).round(3)
+    array([[ 1.   ,  0.005,  0.   ],
+           [-0.005,  1.   ,  0.   ],
+           [ 0.   ,  0.   ,  1.   ]])
+    """
     U, _, Vt = np.linalg.svd(_matrix3(M, "matrix"))
     R = U @ Vt
     if np.linalg.det(R) < 0:
@@ -149,7 +217,40 @@ def nearest_rotation(M) -> np.ndarray:
 
 # --- §4.1 the homogeneous camera and the DLT ----------------------------------------------------------
 def calibration_matrix(io: InteriorOrientation, fx=None, fy=None, skew: float = 0.0) -> np.ndarray:
-    """K of (4.1.2): [[f_x, s, x₀], [0, f_y, y₀], [0, 0, 1]] (f_x = f_y = f unless given; the book has s = 0)."""
+    """K of (4.1.2): [[f_x, s, x₀], [0, f_y, y₀], [0, 0, 1]] (f_x = f_y = f unless given; the book has s = 0).
+
+    Parameters
+    ----------
+    io : InteriorOrientation
+        f, x₀, y₀ (mm).
+    fx, fy : float, optional
+        Separate focal lengths.
+    skew : float
+        s.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        K.
+
+    Raises
+    ------
+    InputError
+        io of the wrong type; f_x, f_y not positive and finite.
+
+    References
+    ----------
+    Chibunichev (2022), §4.1, eq. (4.1.2).
+
+    Examples
+    --------
+    >>> from photolib.camera import InteriorOrientation
+    >>> calibration_matrix(InteriorOrientation(100.0, 0.1, -0.2))
+    array([[100. ,   0. ,   0.1],
+           [  0. , 100. ,  -0.2],
+           [  0. ,   0. ,   1. ]])
+    """
+    _check_type(io, InteriorOrientation, "io")
     fx = io.f if fx is None else float(fx)
     fy = io.f if fy is None else float(fy)
     if not (np.isfinite(fx) and np.isfinite(fy) and fx > 0 and fy > 0 and np.isfinite(skew)):
@@ -163,14 +264,75 @@ def projection_matrix(io: InteriorOrientation, eo: ExteriorOrientation, fx=None,
 
     (x, y, 1)ᵀ ∝ P·(X, Y, Z, 1)ᵀ reproduces the collinearity equations (1.4.12) for f_x = f_y = f.
     ``io`` distortion is ignored (the projective model has none).
+
+    Parameters
+    ----------
+    io : InteriorOrientation
+        Interior orientation.
+    eo : ExteriorOrientation
+        Exterior orientation.
+    fx, fy, skew
+        As in :func:`calibration_matrix`.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        P.
+
+    Raises
+    ------
+    InputError
+        Orientations of the wrong type, bad f_x, f_y.
+
+    References
+    ----------
+    Chibunichev (2022), §4.1, eqs. (4.1.1), (4.1.2); §1.4, eq. (1.4.12).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.camera import ExteriorOrientation, InteriorOrientation
+    >>> io = InteriorOrientation(100.0)
+    >>> eo = ExteriorOrientation(0.0, 0.0, 1000.0)
+    >>> P = projection_matrix(io, eo)
+    >>> h = P @ [100.0, 50.0, 0.0, 1.0]
+    >>> h[:2] / h[2]
+    array([10.,  5.])
     """
     K = calibration_matrix(io, fx, fy, skew)
-    R = D_REFLECTION @ eo.matrix.T
+    R = D_REFLECTION @ _check_type(eo, ExteriorOrientation, "eo").matrix.T
     return K @ R @ np.column_stack([np.eye(3), -eo.center])
 
 
 def dlt_from_projection(P) -> np.ndarray:
-    """L₁…L₁₁ of (4.1.7): the projection matrix divided by its element P₃₄ (4.1.6) → (4.1.7)."""
+    """L₁…L₁₁ of (4.1.7): the projection matrix divided by its element P₃₄ (4.1.6) → (4.1.7).
+
+    Parameters
+    ----------
+    P : (3, 4) array
+        A projection matrix.
+
+    Returns
+    -------
+    (11,) ndarray
+        L₁…L₁₁.
+
+    Raises
+    ------
+    InputError
+        Not a finite 3×4 array.
+    DegenerateGeometryError
+        P₃₄ = 0 (the object origin in the plane of the centre parallel to the image).
+
+    References
+    ----------
+    Chibunichev (2022), §4.1, eqs. (4.1.6), (4.1.7).
+
+    Examples
+    --------
+    >>> dlt_from_projection(np.arange(1.0, 13.0).reshape(3, 4))[:3].round(4)
+    array([0.0833, 0.1667, 0.25  ])
+    """
     P = np.asarray(P, dtype=float)
     if P.shape != (3, 4) or not np.all(np.isfinite(P)):
         raise InputError(f"a projection matrix must be a finite 3×4 array, got shape {P.shape}")
@@ -182,18 +344,107 @@ def dlt_from_projection(P) -> np.ndarray:
 
 
 def projection_from_dlt(L) -> np.ndarray:
-    """The 3×4 matrix [[L₁ L₂ L₃ L₄], [L₅ L₆ L₇ L₈], [L₉ L₁₀ L₁₁ 1]] of (4.1.7)."""
+    """The 3×4 matrix [[L₁ L₂ L₃ L₄], [L₅ L₆ L₇ L₈], [L₉ L₁₀ L₁₁ 1]] of (4.1.7).
+
+    Parameters
+    ----------
+    L : (11,) array
+        L₁…L₁₁.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        The matrix.
+
+    Raises
+    ------
+    InputError
+        Not 11 finite numbers.
+
+    References
+    ----------
+    Chibunichev (2022), §4.1, eq. (4.1.7).
+
+    Examples
+    --------
+    >>> projection_from_dlt(np.arange(1.0, 12.0))[2]
+    array([ 9., 10., 11.,  1.])
+    """
     return np.append(_dlt_vector(L), 1.0).reshape(3, 4)
 
 
 def dlt_from_orientation(io: InteriorOrientation, eo: ExteriorOrientation, fx=None, fy=None,
                          skew: float = 0.0) -> np.ndarray:
-    """L₁…L₁₁ of (4.1.7) for a camera given by its interior and exterior orientation."""
+    """L₁…L₁₁ of (4.1.7) for a camera given by its interior and exterior orientation.
+
+    Parameters
+    ----------
+    io : InteriorOrientation
+        Interior orientation.
+    eo : ExteriorOrientation
+        Exterior orientation.
+    fx, fy, skew
+        As in :func:`calibration_matrix`.
+
+    Returns
+    -------
+    (11,) ndarray
+        L₁…L₁₁.
+
+    Raises
+    ------
+    InputError
+        Orientations of the wrong type.
+    DegenerateGeometryError
+        P₃₄ = 0.
+
+    References
+    ----------
+    Chibunichev (2022), §4.1, eqs. (4.1.1)–(4.1.7).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.camera import ExteriorOrientation, InteriorOrientation
+    >>> io = InteriorOrientation(100.0)
+    >>> eo = ExteriorOrientation(0.0, 0.0, 1000.0)
+    >>> dlt_project(dlt_from_orientation(io, eo), [[100.0, 50.0, 0.0]])
+    array([[10.,  5.]])
+    """
     return dlt_from_projection(projection_matrix(io, eo, fx, fy, skew))
 
 
 def dlt_project(L, XYZ) -> np.ndarray:
-    """Object → image by the DLT (4.1.7): x = (L₁X + L₂Y + L₃Z + L₄)/(L₉X + L₁₀Y + L₁₁Z + 1), likewise y."""
+    """Object → image by the DLT (4.1.7): x = (L₁X + L₂Y + L₃Z + L₄)/(L₉X + L₁₀Y + L₁₁Z + 1), likewise y.
+
+    Parameters
+    ----------
+    L : (11,) array
+        L₁…L₁₁.
+    XYZ : (n, 3) array
+        Object points.
+
+    Returns
+    -------
+    (n, 2) ndarray
+        Image coordinates.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf.
+    DegenerateGeometryError
+        A point in the plane of the centre parallel to the image.
+
+    References
+    ----------
+    Chibunichev (2022), §4.1, eq. (4.1.7).
+
+    Examples
+    --------
+    >>> dlt_project([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0], [[2.0, 3.0, 5.0]])
+    array([[2., 3.]])
+    """
     P = projection_from_dlt(L)
     XYZ = as_points(XYZ, 3, "object points")
     h = _homogeneous(XYZ) @ P.T
@@ -202,7 +453,7 @@ def dlt_project(L, XYZ) -> np.ndarray:
     return h[:, :2] / h[:, 2:]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class DLTOrientation:
     """Interior and exterior orientation recovered from L₁…L₁₁, (4.2.4)–(4.2.6).
 
@@ -240,6 +491,15 @@ class DLTOrientation:
         """max |AᵀA − E| of the matrix (4.2.6) — how far the DLT camera is from a metric one."""
         return float(np.abs(self.A_printed.T @ self.A_printed - np.eye(3)).max())
 
+    def __repr__(self) -> str:
+        w, a, k = np.degrees(self.eo.vector[3:])
+        X, Y, Z = self.center
+        return (f"DLTOrientation (4.2.4)–(4.2.6)\n"
+                f"  x₀ = {self.x0:.4f} mm, y₀ = {self.y0:.4f} mm, f_x = {self.fx:.4f} mm, f_y = {self.fy:.4f} mm, "
+                f"skew = {self.skew:.2e} mm\n"
+                f"  S = ({X:.3f}, {Y:.3f}, {Z:.3f}) m; ω, α, κ = {w:.4f}°, {a:.4f}°, {k:.4f}° ({self.eo.order})\n"
+                f"  non-orthogonality of A: {self.orthogonality_error:.1e}")
+
 
 def orientation_from_dlt(L, order: str = "kaw", printed: bool = False) -> DLTOrientation:
     """x₀, y₀, f_x, f_y (4.2.4), the centre (4.2.5), A (4.2.6) and ω, α, κ by (1.3.6)/(1.3.3).
@@ -254,6 +514,32 @@ def orientation_from_dlt(L, order: str = "kaw", printed: bool = False) -> DLTOri
         If True the centre is computed by (4.2.5) exactly as printed, M⁻¹(L₄, L₈, 1)ᵀ, which
         is the negative of the true centre (the book's example table prints these values);
         the returned ``eo`` then carries that wrong centre too.
+
+    Returns
+    -------
+    DLTOrientation
+        Interior and exterior orientation.
+
+    Raises
+    ------
+    InputError
+        Not 11 finite numbers, unknown order.
+    DegenerateGeometryError
+        Singular 3×3 part, f_x² ≤ 0 or f_y² ≤ 0.
+
+    References
+    ----------
+    Chibunichev (2022), §4.2, eqs. (4.2.4)–(4.2.6); §1.3, eqs. (1.3.3), (1.3.6).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.camera import ExteriorOrientation, InteriorOrientation
+    >>> io = InteriorOrientation(100.0)
+    >>> eo = ExteriorOrientation(0.0, 0.0, 1000.0)
+    >>> o = orientation_from_dlt(dlt_from_orientation(io, eo))
+    >>> round(o.fx, 9), o.center.round(6)
+    (100.0, array([   0.,    0., 1000.]))
     """
     check_order(order)
     L = _dlt_vector(L)
@@ -290,7 +576,7 @@ def orientation_from_dlt(L, order: str = "kaw", printed: bool = False) -> DLTOri
 
 
 # --- §4.2 projective space resection -----------------------------------------------------------------
-@dataclass
+@dataclass(repr=False)
 class DLTResection:
     """Result of :func:`dlt_resection`: L₁…L₁₁ with the accuracy of the linear model (4.2.1).
 
@@ -314,7 +600,14 @@ class DLTResection:
         return orientation_from_dlt(self.L, order, printed)
 
     def as_dict(self) -> dict:
+        """{"L1": L₁, …, "L11": L₁₁}."""
         return dict(zip(DLT_NAMES, self.L))
+
+    def __repr__(self) -> str:
+        rms = float(np.sqrt(np.mean(self.image_residuals ** 2)))
+        return (f"DLTResection ({self.method}), {len(self.image_residuals)} points, dof = {self.dof}\n"
+                f"  μ = {self.mu:.3g}; r.m.s. reprojection error {1000 * rms:.1f} µm\n"
+                f"  L = [{', '.join(f'{v:.6g}' for v in self.L)}]")
 
 
 def _check_not_coplanar(XYZ, what: str):
@@ -324,7 +617,38 @@ def _check_not_coplanar(XYZ, what: str):
 
 
 def dlt_design(XYZ, xy):
-    """B and the free terms of (4.2.1)/(4.2.2): rows [X Y Z 1 0 0 0 0 −xX −xY −xZ], free term −x, then y."""
+    """B and the free terms of (4.2.1)/(4.2.2): rows [X Y Z 1 0 0 0 0 −xX −xY −xZ], free term −x, then y.
+
+    Parameters
+    ----------
+    XYZ : (n, 3) array
+        Control points.
+    xy : (n, 2) array
+        Their image coordinates.
+
+    Returns
+    -------
+    B : (2n, 11) ndarray
+        Coefficients.
+    free : (2n,) ndarray
+        Free terms.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, different counts, NaN/inf.
+
+    References
+    ----------
+    Chibunichev (2022), §4.2, eqs. (4.2.1), (4.2.2).
+
+    Examples
+    --------
+    >>> B, free = dlt_design([[1.0, 2.0, 3.0]], [[0.5, -0.5]])
+    >>> B.shape, free
+    ((2, 11), array([-0.5,  0.5]))
+    """
+    XYZ, xy = as_point_pairs(XYZ, 3, xy, 2, ("object points XYZ", "image points xy"), 1, "the DLT design matrix")
     X, Y, Z = XYZ.T
     x, y = xy.T
     n = len(XYZ)
@@ -364,6 +688,20 @@ def dlt_resection(XYZ, xy, method: str = "normalized", weights=None) -> DLTResec
     DegenerateGeometryError
         Coplanar control points, or an object origin in the plane of the projection centre
         parallel to the image (no L₁₂ = 1 normalisation possible).
+
+    References
+    ----------
+    Chibunichev (2022), §4.2, eqs. (4.2.1)–(4.2.3); §1.8, eqs. (1.8.8)–(1.8.10).
+
+    Examples
+    --------
+    >>> from photolib.camera import ExteriorOrientation, InteriorOrientation
+    >>> from photolib.single_image import project
+    >>> io, eo = InteriorOrientation(100.0), ExteriorOrientation(0.0, 0.0, 1000.0, 0.01, 0.02, 0.03)
+    >>> XYZ = np.random.default_rng(0).uniform([-300, -300, -50], [300, 300, 50], (8, 3))
+    >>> res = dlt_resection(XYZ, project(XYZ, eo, io))
+    >>> res.orientation().center.round(6)
+    array([   0.,    0., 1000.])
     """
     _check_method(method)
     XYZ, xy = as_point_pairs(XYZ, 3, xy, 2, ("control points XYZ", "image points xy"), 6,
@@ -396,7 +734,7 @@ def dlt_resection(XYZ, xy, method: str = "normalized", weights=None) -> DLTResec
 
 
 # --- §4.3 projective forward intersection ------------------------------------------------------------
-@dataclass
+@dataclass(repr=False)
 class DLTIntersection:
     """Object points by (4.3.1) with the precision of each: μ (1.8.9) and m_X, m_Y, m_Z (1.8.8)."""
 
@@ -407,13 +745,26 @@ class DLTIntersection:
     image_residuals: np.ndarray  # (n, k, 2): DLT(X) − x per image, mm
     dof: int
 
+    def __repr__(self) -> str:
+        n = len(self.XYZ)
+        lines = [f"DLTIntersection (4.3.1): {n} points from {self.residuals.shape[1]} images, dof = {self.dof}"]
+        for i in range(min(n, 5)):
+            X, Y, Z = self.XYZ[i]
+            lines.append(f"  point {i}: X = {X:.3f} m, Y = {Y:.3f} m, Z = {Z:.3f} m"
+                         + ("" if np.all(np.isnan(self.std[i])) else
+                            f" (m = {', '.join(f'{v:.3f}' for v in self.std[i])} m)"))
+        if n > 5:
+            lines.append(f"  … {n - 5} more")
+        return "\n".join(lines)
+
 
 def dlt_intersection(Ls, xys, weights=None) -> DLTIntersection:
     """Projective forward intersection (4.3.1) from two or more images.
 
     For every point and image: (L₁ − xL₉)X + (L₂ − xL₁₀)Y + (L₃ − xL₁₁)Z + L₄ − x = v_x and the
     same with L₅…L₈ and y; all images are solved together by least squares (one
-    :func:`~photolib.lsq.solve_normal_equations` per point).
+    :func:`~photolib.lsq.solve_normal_equations` per point). Every point is checked to lie in
+    front of every camera (image axes as in Chapter 1: x right, y up).
 
     Parameters
     ----------
@@ -422,6 +773,36 @@ def dlt_intersection(Ls, xys, weights=None) -> DLTIntersection:
     xys : sequence of (n, 2) arrays
         Image coordinates of the same n points on each image.
     weights : sequence of (n,) or (n, 2) arrays, optional
+        Weights of the coordinates.
+
+    Returns
+    -------
+    DLTIntersection
+        Points, m_X, m_Y, m_Z, μ, residuals.
+
+    Raises
+    ------
+    InputError
+        Fewer than two images, mismatched counts, bad weights, NaN.
+    DegenerateGeometryError
+        Rays that do not intersect in a point (parallel).
+    PointBehindCameraError
+        A point behind a camera; ``points`` lists them.
+
+    References
+    ----------
+    Chibunichev (2022), §4.3, eq. (4.3.1); §1.8, eqs. (1.8.8), (1.8.9).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.camera import ExteriorOrientation, InteriorOrientation
+    >>> io = InteriorOrientation(100.0)
+    >>> eo = ExteriorOrientation(0.0, 0.0, 1000.0)
+    >>> e2 = ExteriorOrientation(400.0, 0.0, 1000.0)
+    >>> L1, L2 = dlt_from_orientation(io, eo), dlt_from_orientation(io, e2)
+    >>> dlt_intersection([L1, L2], [[[20.0, 10.0]], [[-20.0, 10.0]]]).XYZ.round(6)
+    array([[200., 100.,   0.]])
     """
     Ls = [_dlt_vector(L) for L in Ls]
     if len(Ls) < 2 or len(xys) != len(Ls):
@@ -465,13 +846,56 @@ def dlt_intersection(Ls, xys, weights=None) -> DLTIntersection:
             raise DegenerateGeometryError(f"point {i}: the rays do not intersect in a point ({err})") from err
         V[i] = B[i] @ XYZ[i] + free[i]
         mu[i], std[i], _ = accuracy(V[i], Q, p)
+    behind = np.zeros(n, bool)
+    for L in Ls:
+        behind |= ~_in_front_of_dlt(L, XYZ)
+    if np.any(behind):
+        bad = np.flatnonzero(behind)
+        raise PointBehindCameraError(f"points {bad.tolist()} lie behind at least one of the cameras", points=bad)
     image_res = np.stack([dlt_project(L, XYZ) for L in Ls], axis=1) - xy
     return DLTIntersection(XYZ, std, mu, V.reshape(n, k, 2), image_res, dof)
 
 
+def _in_front_of_dlt(L, XYZ) -> np.ndarray:
+    """True for points in front of the DLT camera (image axes as in Chapter 1, x right, y up).
+
+    With P = K·D·Aᵀ·[E | −S] (module notes) det M < 0 and the third homogeneous coordinate
+    w = −Z* > 0 for a point in front; sign(det M)·w is invariant to the scale of L, so a point
+    is in front when sign(det M)·w < 0.
+    """
+    P = projection_from_dlt(L)
+    w = _homogeneous(XYZ) @ P[2]
+    return np.sign(np.linalg.det(P[:, :3])) * w < 0
+
+
 # --- §4.4 fundamental and essential matrices -----------------------------------------------------------
 def skew_matrix(b) -> np.ndarray:
-    """S_b of (4.4.4): [[0, −b_z, b_y], [b_z, 0, −b_x], [−b_y, b_x, 0]], so that S_b·r = b × r (4.4.3)."""
+    """S_b of (4.4.4): [[0, −b_z, b_y], [b_z, 0, −b_x], [−b_y, b_x, 0]], so that S_b·r = b × r (4.4.3).
+
+    Parameters
+    ----------
+    b : 3-vector
+        The base.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        S_b.
+
+    Raises
+    ------
+    InputError
+        Not a finite 3-vector.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eqs. (4.4.3), (4.4.4).
+
+    Examples
+    --------
+    >>> skew_matrix([1.0, 2.0, 3.0]) @ [0.0, 0.0, 1.0]
+    array([ 2., -1.,  0.])
+    """
     b = np.asarray(b, dtype=float)
     if b.shape != (3,) or not np.all(np.isfinite(b)):
         raise InputError(f"b must be a finite 3-vector, got shape {b.shape}")
@@ -482,9 +906,36 @@ def normalized_image_coordinates(xy, io: InteriorOrientation) -> np.ndarray:
     """r″ = K⁻¹(x, y, 1)ᵀ of (4.4.15) = ((x − x₀)/f, (y − y₀)/f, 1), one row per point.
 
     This is the Chapter-1 ray (x − x₀, y − y₀, −f) divided by f and reflected by D = diag(1, 1, −1).
+
+    Parameters
+    ----------
+    xy : (n, 2) array
+        Image coordinates (mm).
+    io : InteriorOrientation
+        Interior orientation.
+
+    Returns
+    -------
+    (n, 3) ndarray
+        r″.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf, io of the wrong type.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eq. (4.4.15).
+
+    Examples
+    --------
+    >>> from photolib.camera import InteriorOrientation
+    >>> normalized_image_coordinates([[10.0, -20.0]], InteriorOrientation(100.0))
+    array([[ 0.1, -0.2,  1. ]])
     """
     xy = as_points(xy, 2, "image coordinates")
-    return _homogeneous(xy) @ np.linalg.inv(calibration_matrix(io)).T
+    return _homogeneous(xy) @ np.linalg.inv(calibration_matrix(_check_type(io, InteriorOrientation, "io"))).T
 
 
 def _layout(M, layout):
@@ -497,8 +948,41 @@ def essential_from_orientation(eo1: ExteriorOrientation, eo2: ExteriorOrientatio
 
     r₂″ᵀ E r₁″ = 0 with E = D·A₂ᵀ·S_b·A₁·D, b = (S₂ − S₁)/|S₂ − S₁| — the coplanarity (4.4.1) with
     r_i = A_i·D·r_i″ (not A₂⁻¹ as printed). Scaled to unit Frobenius norm.
+
+    Parameters
+    ----------
+    eo1, eo2 : ExteriorOrientation
+        The two images.
+    layout : {"x2Fx1", "x1Fx2"}
+        Layout of the result.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        E.
+
+    Raises
+    ------
+    InputError
+        Orientations of the wrong type, unknown layout.
+    DegenerateGeometryError
+        Zero base.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eqs. (4.4.1), (4.4.7), (4.4.16).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.camera import ExteriorOrientation, InteriorOrientation
+    >>> io = InteriorOrientation(100.0)
+    >>> eo = ExteriorOrientation(0.0, 0.0, 1000.0)
+    >>> E = essential_from_orientation(eo, ExteriorOrientation(400.0, 0.0, 1000.0))
+    >>> float(np.array([0.2, 0.1, 1.0]) @ E @ [0.6, 0.1, 1.0])
+    0.0
     """
-    b = eo2.center - eo1.center
+    b = _check_type(eo2, ExteriorOrientation, "eo2").center - _check_type(eo1, ExteriorOrientation, "eo1").center
     nb = np.linalg.norm(b)
     if nb == 0:
         raise DegenerateGeometryError("the two projection centres coincide: the base is zero")
@@ -509,7 +993,41 @@ def essential_from_orientation(eo1: ExteriorOrientation, eo2: ExteriorOrientatio
 def fundamental_from_orientation(io1: InteriorOrientation, eo1: ExteriorOrientation,
                                  io2: InteriorOrientation, eo2: ExteriorOrientation,
                                  layout: str = "x2Fx1") -> np.ndarray:
-    """F = K₂⁻ᵀ·E·K₁⁻¹ of two oriented images (a corrected (4.4.10)), unit Frobenius norm."""
+    """F = K₂⁻ᵀ·E·K₁⁻¹ of two oriented images (a corrected (4.4.10)), unit Frobenius norm.
+
+    Parameters
+    ----------
+    io1, eo1, io2, eo2
+        Interior and exterior orientation of the two images.
+    layout : {"x2Fx1", "x1Fx2"}
+        Layout of the result.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        F.
+
+    Raises
+    ------
+    InputError
+        Wrong types, unknown layout.
+    DegenerateGeometryError
+        Zero base.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eqs. (4.4.10), (4.4.16).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.camera import ExteriorOrientation, InteriorOrientation
+    >>> io = InteriorOrientation(100.0)
+    >>> eo = ExteriorOrientation(0.0, 0.0, 1000.0)
+    >>> F = fundamental_from_orientation(io, eo, io, ExteriorOrientation(400.0, 0.0, 1000.0))
+    >>> float(np.abs(epipolar_residuals(F, [[60.0, 10.0]], [[20.0, 10.0]]))[0]) < 1e-12
+    True
+    """
     E = essential_from_orientation(eo1, eo2)
     F = np.linalg.inv(calibration_matrix(io2)).T @ E @ np.linalg.inv(calibration_matrix(io1))
     return _layout(F / np.linalg.norm(F), layout)
@@ -552,6 +1070,8 @@ def _scale(F, method):
 def fundamental_matrix(xy1, xy2, method: str = "normalized", layout: str = "x2Fx1") -> np.ndarray:
     """Fundamental matrix from ≥ 8 correspondences, (4.4.11)–(4.4.14).
 
+    The sign is fixed (f₃₃ ≥ 0 after scaling), so the result does not depend on the signs the SVD picks.
+
     Parameters
     ----------
     xy1, xy2 : (n, 2) arrays
@@ -564,12 +1084,29 @@ def fundamental_matrix(xy1, xy2, method: str = "normalized", layout: str = "x2Fx
         ``"x2Fx1"`` (default): x₂ᵀ F x₁ = 0 and l₂ = F x₁ — the layout of the book's numbers
         and of OpenCV; ``"x1Fx2"``: the transpose, the F of equations (4.4.13)/(4.4.14).
 
+    Returns
+    -------
+    (3, 3) ndarray
+        F.
+
     Raises
     ------
     InputError
         Fewer than 8 correspondences, mismatched shapes, NaN.
     DegenerateGeometryError
         Correspondences that leave a family of solutions (planar scene, pure rotation).
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eqs. (4.4.11)–(4.4.14); Hartley & Zisserman, Multiple View Geometry (2003), §11.2.
+
+    Examples
+    --------
+    >>> from photolib.synthetic import stereo_pair
+    >>> p = stereo_pair(10, seed=0, angle_spread_deg=2.0)
+    >>> F = fundamental_matrix(p.xy1, p.xy2)
+    >>> float(np.abs(epipolar_residuals(F, p.xy1, p.xy2)).max()) < 1e-9
+    True
     """
     _check_method(method)
     _check_layout(layout)
@@ -586,6 +1123,41 @@ def essential_matrix(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientatio
     solution as :func:`fundamental_matrix`. ``"book"``: unconstrained, e₃₃ = 1 (the book's
     example); ``"normalized"``: conditioned, singular values forced to (σ, σ, 0), unit norm.
     (The book's remark that five points suffice needs the non-linear five-point solver.)
+
+    Parameters
+    ----------
+    xy1, xy2 : (n, 2) arrays
+        Corresponding image coordinates (mm), n ≥ 8.
+    io1, io2 : InteriorOrientation
+        Interior orientation (``io2`` defaults to ``io1``).
+    method : {"normalized", "book"}
+        See above.
+    layout : {"x2Fx1", "x1Fx2"}
+        Layout of the result.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        E.
+
+    Raises
+    ------
+    InputError
+        Fewer than 8 correspondences, NaN, bad options.
+    DegenerateGeometryError
+        Planar scene, pure rotation.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eqs. (4.4.15), (4.4.16).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import stereo_pair
+    >>> p = stereo_pair(10, seed=0, angle_spread_deg=2.0)
+    >>> E = essential_matrix(p.xy1, p.xy2, p.io)
+    >>> np.linalg.svd(E, compute_uv=False).round(6)
+    array([0.707107, 0.707107, 0.      ])
     """
     _check_method(method)
     _check_layout(layout)
@@ -598,7 +1170,37 @@ def essential_matrix(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientatio
 
 def essential_from_fundamental(F, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
                                layout: str = "x2Fx1") -> np.ndarray:
-    """E = K₂ᵀ·F·K₁ (layout x2Fx1; K₁ᵀ·F·K₂ for x1Fx2) — (4.4.10) with (4.4.16)."""
+    """E = K₂ᵀ·F·K₁ (layout x2Fx1; K₁ᵀ·F·K₂ for x1Fx2) — (4.4.10) with (4.4.16).
+
+    Parameters
+    ----------
+    F : (3, 3) array
+        Fundamental matrix.
+    io1, io2 : InteriorOrientation
+        Interior orientation (``io2`` defaults to ``io1``).
+    layout : {"x2Fx1", "x1Fx2"}
+        Layout of F (and of the result).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        E.
+
+    Raises
+    ------
+    InputError
+        Not a finite 3×3 matrix, bad io, unknown layout.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eqs. (4.4.10), (4.4.16).
+
+    Examples
+    --------
+    >>> from photolib.camera import InteriorOrientation
+    >>> essential_from_fundamental(np.eye(3), InteriorOrientation(2.0)).diagonal()
+    array([4., 4., 1.])
+    """
     F = _matrix3(F, "F")
     io2 = io1 if io2 is None else io2
     K1, K2 = calibration_matrix(io1), calibration_matrix(io2)
@@ -606,14 +1208,72 @@ def essential_from_fundamental(F, io1: InteriorOrientation, io2: InteriorOrienta
 
 
 def epipolar_residuals(F, xy1, xy2, layout: str = "x2Fx1") -> np.ndarray:
-    """Algebraic residuals x₂ᵀ F x₁ (or x₁ᵀ F x₂ for layout x1Fx2) of (4.4.13), one per point."""
+    """Algebraic residuals x₂ᵀ F x₁ (or x₁ᵀ F x₂ for layout x1Fx2) of (4.4.13), one per point.
+
+    Parameters
+    ----------
+    F : (3, 3) array
+        Fundamental matrix.
+    xy1, xy2 : (n, 2) arrays
+        Corresponding coordinates.
+    layout : {"x2Fx1", "x1Fx2"}
+        Layout of F.
+
+    Returns
+    -------
+    (n,) ndarray
+        The residuals.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf, unknown layout.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eq. (4.4.13).
+
+    Examples
+    --------
+    >>> epipolar_residuals(skew_matrix([1.0, 0, 0]), [[1.0, 2.0]], [[3.0, 2.0]])
+    array([0.])
+    """
     F = _layout(_matrix3(F, "F"), layout)                       # now always x2Fx1
     xy1, xy2 = _pair(xy1, xy2, 1, "epipolar residuals")
     return np.einsum("ni,ij,nj->n", _homogeneous(xy2), F, _homogeneous(xy1))
 
 
 def sampson_distance(F, xy1, xy2, layout: str = "x2Fx1") -> np.ndarray:
-    """First-order geometric distance of each correspondence from the epipolar geometry (image units)."""
+    """First-order geometric distance of each correspondence from the epipolar geometry (image units).
+
+    Parameters
+    ----------
+    F : (3, 3) array
+        Fundamental matrix.
+    xy1, xy2 : (n, 2) arrays
+        Corresponding coordinates.
+    layout : {"x2Fx1", "x1Fx2"}
+        Layout of F.
+
+    Returns
+    -------
+    (n,) ndarray
+        Sampson distances.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf, unknown layout.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4; Hartley & Zisserman, Multiple View Geometry (2003), §11.4.3.
+
+    Examples
+    --------
+    >>> sampson_distance(skew_matrix([1.0, 0, 0]), [[1.0, 2.0]], [[3.0, 2.5]]).round(4)
+    array([0.3536])
+    """
     F = _layout(_matrix3(F, "F"), layout)
     xy1, xy2 = _pair(xy1, xy2, 1, "Sampson distance")
     h1, h2 = _homogeneous(xy1), _homogeneous(xy2)
@@ -628,6 +1288,38 @@ def epipolar_lines(F, xy, image: int = 2, layout: str = "x2Fx1") -> np.ndarray:
 
     ``image=2``: lines on image 2 of points ``xy`` of image 1, l₂ = F r₁ (the formula after
     (4.4.16)); ``image=1``: lines on image 1 of points of image 2, l₁ = Fᵀ r₂.
+
+    Parameters
+    ----------
+    F : (3, 3) array
+        Fundamental matrix.
+    xy : (n, 2) array
+        Points.
+    image : {1, 2}
+        The image the lines lie on.
+    layout : {"x2Fx1", "x1Fx2"}
+        Layout of F.
+
+    Returns
+    -------
+    (n, 3) ndarray
+        The lines.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf, image not 1 or 2.
+    DegenerateGeometryError
+        A point at the epipole.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eq. (4.4.16) and the line formula after it.
+
+    Examples
+    --------
+    >>> epipolar_lines(skew_matrix([1.0, 0, 0]), [[1.0, 2.0]])
+    array([[ 0., -1.,  2.]])
     """
     F = _layout(_matrix3(F, "F"), layout)
     if image not in (1, 2):
@@ -641,50 +1333,116 @@ def epipolar_lines(F, xy, image: int = 2, layout: str = "x2Fx1") -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class RelativeOrientation:
-    """Relative orientation from E in the system b_y, b_z, ω′₂, α′₂, κ′₂ of (2.7.5) (A′₁ = E).
+class EssentialCandidate:
+    """One of the four (rotation, base) decompositions of an essential matrix.
 
-    The model frame is the camera-1 frame of Chapter 1 (image at z = −f). ``A2`` maps camera-2
-    axes to model axes; ``base`` is the unit vector S₁ → S₂ in the model frame;
-    b_y = B_Y/B_X, b_z = B_Z/B_X (§2.7). ``in_front`` counts the points that lie in front of
-    both cameras for the chosen solution (the cheirality test).
+    Attributes
+    ----------
+    A2 : (3, 3) array
+        A′₂, camera-2 axes → model axes (the model frame is the camera-1 frame of Chapter 1).
+    base : (3,) array
+        Unit base vector S₁ → S₂ in the model frame.
+    n_front : int
+        Number of points with positive ray scales N₁ and N₂ (in front of both cameras).
+    N1, N2 : (n,) arrays
+        The ray scales of the vector forward intersection N₁r₁ − N₂A′₂r₂ ≈ b (§2.4).
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eqs. (4.4.1)–(4.4.16); §2.4, eq. (2.4.7).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> c = EssentialCandidate(np.eye(3), np.array([1.0, 0, 0]), 3, np.ones(3), np.ones(3))
+    >>> c.n_front
+    3
     """
 
     A2: np.ndarray
     base: np.ndarray
-    by: float
-    bz: float
-    omega2: float
-    alpha2: float
-    kappa2: float
-    order: str
-    in_front: int
-    n_points: int
+    n_front: int
+    N1: np.ndarray
+    N2: np.ndarray
 
-    @property
-    def elements(self) -> np.ndarray:
-        """(b_y, b_z, ω′₂, α′₂, κ′₂)."""
-        return np.array([self.by, self.bz, self.omega2, self.alpha2, self.kappa2])
+    def __repr__(self) -> str:
+        w, a, k = np.degrees(rotation_angles(self.A2, "kaw", singular="kappa-zero"))
+        b = ", ".join(f"{v:+.4f}" for v in self.base)
+        return (f"EssentialCandidate(ω′₂, α′₂, κ′₂ = {w:.3f}°, {a:.3f}°, {k:.3f}° (kaw); base ({b}); "
+                f"{self.n_front}/{len(self.N1)} points in front)")
 
 
 def _ray_scales(r1, r2m, b):
     """N₁, N₂ with N₁r₁ − N₂r₂ ≈ b (the vector forward intersection of §2.4), vectorised."""
     c = np.cross(r1, r2m)
     cc = np.einsum("ni,ni->n", c, c)
-    N1 = np.einsum("ni,ni->n", np.cross(b, r2m), c) / cc
-    N2 = np.einsum("ni,ni->n", np.cross(b, r1), c) / cc
+    with np.errstate(divide="ignore", invalid="ignore"):
+        N1 = np.einsum("ni,ni->n", np.cross(b, r2m), c) / cc
+        N2 = np.einsum("ni,ni->n", np.cross(b, r1), c) / cc
     return N1, N2
 
 
-def decompose_essential(E, xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
-                        order: str = "kaw", layout: str = "x2Fx1") -> RelativeOrientation:
-    """Rotation and base direction from E, with the cheirality test, and the elements of (2.7.5).
+_W_TURN = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
 
-    E (for r″ of (4.4.15)) is turned into the Chapter-1 frame, E₁ = D·E·D = A′₂ᵀ S_b (A′₁ = E);
-    its SVD gives two rotations and two base signs; the one that puts most points in front of
-    both cameras (positive ray scales N₁, N₂ of §2.4) is returned.
+
+def _candidate_key(A2, b):
+    """Canonical order of the four candidates, independent of LAPACK's sign choices in the SVD.
+
+    The two rotations are told apart by their rotation angle (largest first), the two bases by
+    the sign of their largest component (positive first); the angle is rounded so that rounding
+    noise cannot swap two candidates.
     """
-    check_order(order)
+    angle = np.arccos(np.clip((np.trace(A2) - 1.0) / 2.0, -1.0, 1.0))
+    k = int(np.argmax(np.abs(np.round(b, 12))))
+    return (-round(float(angle), 9), -float(np.sign(b[k])))
+
+
+def essential_candidates(E, xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
+                         layout: str = "x2Fx1") -> list:
+    """The four (A′₂, b) decompositions of an essential matrix, in a canonical order.
+
+    E (for r″ of (4.4.15)) is turned into the Chapter-1 frame, E₁ = D·E·D = A′₂ᵀ S_b (A′₁ = E).
+    With E₁ = U diag(1, 1, 0) Vᵀ (U, V taken with det = +1) the rotations are A′₂ᵀ = U W Vᵀ and
+    U Wᵀ Vᵀ and A′₂ᵀ b = ±u₃. The set of four candidates does not depend on the signs the SVD
+    picks; their order here does not either: the rotation with the larger rotation angle comes
+    first, and for each rotation the base whose largest component is positive.
+
+    Parameters
+    ----------
+    E : (3, 3) array
+        Essential matrix for normalised coordinates r″ (4.4.15).
+    xy1, xy2 : (n, 2) arrays
+        Corresponding image coordinates (mm) used for the cheirality count.
+    io1, io2 : InteriorOrientation
+        Interior orientation of the two images (``io2`` defaults to ``io1``).
+    layout : {"x2Fx1", "x1Fx2"}
+        Layout of ``E`` (see :func:`fundamental_matrix`).
+
+    Returns
+    -------
+    list of EssentialCandidate
+        Four candidates with A′₂, the unit base, the ray scales and the number of points in front.
+
+    Raises
+    ------
+    InputError
+        E not a finite 3×3 matrix, bad point arrays, unknown layout.
+    DegenerateGeometryError
+        E of rank < 2.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eqs. (4.4.1), (4.4.15), (4.4.16); Hartley & Zisserman (2003), §9.6.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.camera import InteriorOrientation
+    >>> E = skew_matrix([1.0, 0.0, 0.0])
+    >>> xy = np.array([[10.0, 5.0], [-20.0, 8.0], [5.0, -30.0]])
+    >>> [c.n_front for c in essential_candidates(E, xy + [0, 0], xy - [30, 0], InteriorOrientation(100.0))]
+    [0, 0, 3, 0]
+    """
     E = _layout(_matrix3(E, "E"), layout)
     xy1, xy2 = _pair(xy1, xy2, 1, "the decomposition of E")
     io2 = io1 if io2 is None else io2
@@ -692,39 +1450,137 @@ def decompose_essential(E, xy1, xy2, io1: InteriorOrientation, io2: InteriorOrie
     r2 = normalized_image_coordinates(xy2, io2) @ D_REFLECTION
     E1 = D_REFLECTION @ E @ D_REFLECTION
     U, s, Vt = np.linalg.svd(E1)
-    if s[1] <= 1e-9 * s[0]:
+    if not s[0] > 0 or s[1] <= 1e-9 * s[0]:
         raise DegenerateGeometryError("E has rank < 2: no base direction can be recovered")
     if np.linalg.det(U) < 0:
         U = -U
     if np.linalg.det(Vt) < 0:
         Vt = -Vt
-    W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
-    best = None
-    for R in (U @ W @ Vt, U @ W.T @ Vt):          # R = A′₂ᵀ (camera 1 → camera 2)
-        for t in (U[:, 2], -U[:, 2]):             # t = A′₂ᵀ b
+    out = []
+    for R in (U @ _W_TURN @ Vt, U @ _W_TURN.T @ Vt):      # R = A′₂ᵀ (camera 1 → camera 2)
+        for t in (U[:, 2], -U[:, 2]):                      # t = A′₂ᵀ b
             A2 = R.T
             b = A2 @ t
             N1, N2 = _ray_scales(r1, r2 @ A2.T, b)
-            score = int(np.sum((N1 > 0) & (N2 > 0)))
-            if best is None or score > best[0]:
-                best = (score, A2, b)
-    score, A2, b = best
-    if score == 0:
-        raise DegenerateGeometryError("no decomposition of E puts the points in front of both cameras")
-    if abs(b[0]) < 1e-12:
-        raise DegenerateGeometryError("B_X = 0: b_y = B_Y/B_X and b_z = B_Z/B_X of (2.7.3) are undefined")
-    w, a, k = rotation_angles(A2, order)
-    return RelativeOrientation(A2, b, float(b[1] / b[0]), float(b[2] / b[0]), w, a, k, order, score, len(xy1))
+            out.append(EssentialCandidate(A2, b, int(np.sum((N1 > 0) & (N2 > 0))), N1, N2))
+    return sorted(out, key=lambda c: _candidate_key(c.A2, c.base))
+
+
+def decompose_essential(E, xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
+                        order: str = "kaw", layout: str = "x2Fx1", system: str = "dependent"):
+    """Rotation and base direction from E, with the cheirality test, and the elements of §2.7.
+
+    Of the four candidates of :func:`essential_candidates` the one that puts most points in
+    front of both cameras (positive ray scales N₁, N₂ of §2.4) is kept; a tie (which only
+    degenerate data produce) keeps the first in the canonical order. The result is converted to
+    the elements of relative orientation of Chapter 2 in the system ``system``.
+
+    Parameters
+    ----------
+    E : (3, 3) array
+        Essential matrix for normalised coordinates r″ (4.4.15).
+    xy1, xy2 : (n, 2) arrays
+        Corresponding image coordinates (mm).
+    io1, io2 : InteriorOrientation
+        Interior orientation of the images (``io2`` defaults to ``io1``).
+    order : {"kaw", "wak"}
+        Rotation sequence of the returned angles.
+    layout : {"x2Fx1", "x1Fx2"}
+        Layout of ``E``.
+    system : {"dependent", "independent"}
+        ``"dependent"`` (2.7.5): b_y, b_z, ω′₂, α′₂, κ′₂ with A′₁ = E (the default);
+        ``"independent"`` (2.7.4): α′₁, κ′₁, ω′₂, α′₂, κ′₂ with the model X axis along the base.
+
+    Returns
+    -------
+    photolib.image_pair.RelativeOrientation
+        The elements, ``in_front`` (points in front of both cameras) and ``n_points``; no
+        adjustment (``adjustment`` is None).
+
+    Raises
+    ------
+    InputError
+        Bad matrix, points, order, layout or system.
+    DegenerateGeometryError
+        E of rank < 2; no candidate puts any point in front; B_X = 0 in the dependent system.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eqs. (4.4.1)–(4.4.16); §2.7, eqs. (2.7.3)–(2.7.5).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.camera import InteriorOrientation
+    >>> xy = np.array([[10.0, 5.0], [-20.0, 8.0], [5.0, -30.0]])
+    >>> ro = decompose_essential(skew_matrix([1.0, 0, 0]), xy, xy - [30, 0], InteriorOrientation(100.0))
+    >>> round(ro.b_y, 6), ro.in_front
+    (0.0, 3)
+    """
+    from .image_pair import _relative_from_rotation
+
+    check_order(order)
+    cands = essential_candidates(E, xy1, xy2, io1, io2, layout)
+    best = max(cands, key=lambda c: c.n_front)          # max keeps the first of equal scores
+    if best.n_front == 0:
+        raise PointBehindCameraError("no decomposition of E puts the points in front of both cameras",
+                                     points=range(len(best.N1)))
+    xy1, xy2 = _pair(xy1, xy2, 1, "the decomposition of E")
+    return _relative_from_rotation(best.A2, best.base, xy1, xy2, io1, io1 if io2 is None else io2,
+                                   system, order, in_front=best.n_front)
 
 
 def relative_orientation_projective(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
-                                    order: str = "kaw") -> RelativeOrientation:
-    """§4.4 end to end: E by the normalised 8-point method, then :func:`decompose_essential`."""
+                                    order: str = "kaw", system: str = "dependent"):
+    """§4.4 end to end: E by the normalised 8-point method, then :func:`decompose_essential`.
+
+    Parameters
+    ----------
+    xy1, xy2 : (n, 2) arrays
+        Corresponding image coordinates (mm), n ≥ 8.
+    io1, io2 : InteriorOrientation
+        Interior orientation of the images (``io2`` defaults to ``io1``).
+    order : {"kaw", "wak"}
+        Rotation sequence of the returned angles.
+    system : {"dependent", "independent"}
+        System of the elements, see :func:`decompose_essential`.
+
+    Returns
+    -------
+    photolib.image_pair.RelativeOrientation
+        The closed-form elements (no adjustment), ``in_front`` and ``n_points``.
+
+    Raises
+    ------
+    InputError
+        Fewer than 8 correspondences, NaN/inf, bad options.
+    DegenerateGeometryError
+        Planar scene or pure rotation (no base); B_X = 0 in the dependent system.
+    PointBehindCameraError
+        No decomposition puts the points in front of both cameras.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4, eqs. (4.4.11)–(4.4.16); §2.7, eq. (2.7.5).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.camera import ExteriorOrientation, InteriorOrientation
+    >>> from photolib.single_image import project
+    >>> io = InteriorOrientation(100.0)
+    >>> P = np.random.default_rng(0).uniform([-300, -300, -40], [300, 300, 40], (12, 3))
+    >>> e1 = ExteriorOrientation(0, 0, 1000, 0.01, 0.02, 0.03)
+    >>> e2 = ExteriorOrientation(400, 10, 1000, -0.02, 0.01, 0.05)
+    >>> ro = relative_orientation_projective(project(P, e1, io), project(P, e2, io), io)
+    >>> round(ro.b_y, 4), ro.in_front
+    (0.0..., 12)
+    """
     E = essential_matrix(xy1, xy2, io1, io2)
-    return decompose_essential(E, xy1, xy2, io1, io2, order)
+    return decompose_essential(E, xy1, xy2, io1, io2, order, system=system)
 
 
-@dataclass
+@dataclass(repr=False)
 class RansacResult:
     """F estimated robustly: the matrix (layout x2Fx1 unless asked otherwise), the inlier mask, trials made."""
 
@@ -732,13 +1588,55 @@ class RansacResult:
     inliers: np.ndarray
     trials: int
 
+    def __repr__(self) -> str:
+        return f"RansacResult: {int(self.inliers.sum())}/{len(self.inliers)} inliers after {self.trials} samples"
+
 
 def ransac_fundamental(xy1, xy2, threshold: float, rng=0, max_trials: int = 2000,
                        confidence: float = 0.999, layout: str = "x2Fx1") -> RansacResult:
     """F from correspondences with outliers: RANSAC over 8-point samples, Sampson distance < threshold.
 
-    ``rng`` is a seed or a :class:`numpy.random.Generator` (deterministic by default). The
-    final F is the normalised 8-point solution on all inliers, whose set is then recomputed.
+    The final F is the normalised 8-point solution on all inliers, whose set is then recomputed.
+
+    Parameters
+    ----------
+    xy1, xy2 : (n, 2) arrays
+        Correspondences, n ≥ 8.
+    threshold : float
+        Sampson distance (image units) below which a match is an inlier.
+    rng : int or numpy.random.Generator
+        Seed or generator (deterministic by default).
+    max_trials : int
+        Maximum number of samples.
+    confidence : float
+        Probability of drawing one outlier-free sample, in (0, 1).
+    layout : {"x2Fx1", "x1Fx2"}
+        Layout of the result.
+
+    Returns
+    -------
+    RansacResult
+        F, the inlier mask, the number of trials.
+
+    Raises
+    ------
+    InputError
+        Fewer than 8 points, a bad threshold or confidence, NaN.
+    DegenerateGeometryError
+        No epipolar geometry supported by 8 points.
+
+    References
+    ----------
+    Chibunichev (2022), §4.4; Hartley & Zisserman, Multiple View Geometry (2003), §11.6.
+
+    Examples
+    --------
+    >>> from photolib.synthetic import stereo_pair
+    >>> p = stereo_pair(30, seed=0, angle_spread_deg=2.0, sigma=0.002)
+    >>> xy2 = p.xy2.copy(); xy2[:3] += 5.0
+    >>> r = ransac_fundamental(p.xy1, xy2, threshold=0.02)
+    >>> int(r.inliers.sum()), bool(r.inliers[:3].any())
+    (27, False)
     """
     _check_layout(layout)
     xy1, xy2 = _pair(xy1, xy2, 8, "RANSAC for the fundamental matrix")
@@ -774,11 +1672,42 @@ def ransac_fundamental(xy1, xy2, threshold: float, rng=0, max_trials: int = 2000
 
 # --- plane-to-plane homography -------------------------------------------------------------------------
 def apply_homography(H, xy) -> np.ndarray:
-    """x′ = (h₁x + h₂y + h₃)/(h₇x + h₈y + 1), y′ = (h₄x + h₅y + h₆)/(h₇x + h₈y + 1) (H 3×3 or h₁…h₈)."""
+    """x′ = (h₁x + h₂y + h₃)/(h₇x + h₈y + 1), y′ = (h₄x + h₅y + h₆)/(h₇x + h₈y + 1) (H 3×3 or h₁…h₈).
+
+    Parameters
+    ----------
+    H : (3, 3) array or (8,) array
+        The homography.
+    xy : (n, 2) array
+        Points of the source plane.
+
+    Returns
+    -------
+    (n, 2) ndarray
+        Points of the destination plane.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf.
+    DegenerateGeometryError
+        A singular (zero, rank-deficient) H; a point mapped to infinity.
+
+    References
+    ----------
+    Chibunichev (2022), §1.7, eq. (1.7.5); §4 (plane-to-plane projective transformation).
+
+    Examples
+    --------
+    >>> apply_homography(np.diag([2.0, 3.0, 1.0]), [[1.0, 1.0]])
+    array([[2., 3.]])
+    """
     H = np.asarray(H, dtype=float)
     if H.shape == (8,):
         H = np.append(H, 1.0).reshape(3, 3)
     H = _matrix3(H, "H")
+    if abs(np.linalg.det(H)) <= 1e-12 * max(np.abs(H).max(), np.finfo(float).tiny) ** 3:
+        raise DegenerateGeometryError("H is singular (zero or rank-deficient): it is not a projective transformation")
     h = _homogeneous(as_points(xy, 2, "plane coordinates")) @ H.T
     if np.any(np.abs(h[:, 2]) < 1e-15 * np.abs(h).max()):
         raise DegenerateGeometryError("a point is mapped to infinity (on the vanishing line)")
@@ -797,7 +1726,37 @@ def _check_plane_points(src, dst):
 
 
 def homography_dlt(src, dst) -> np.ndarray:
-    """Plane-to-plane homography (8 parameters, h₃₃ = 1) by the normalised linear DLT, ≥ 4 points."""
+    """Plane-to-plane homography (8 parameters, h₃₃ = 1) by the normalised linear DLT, ≥ 4 points.
+
+    Parameters
+    ----------
+    src, dst : (n, 2) arrays
+        Corresponding points, n ≥ 4, no three collinear.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H with h₃₃ = 1.
+
+    Raises
+    ------
+    InputError
+        Fewer than 4 points, bad shapes, NaN.
+    DegenerateGeometryError
+        Collinear points, h₃₃ = 0.
+
+    References
+    ----------
+    Chibunichev (2022), §1.7, eq. (1.7.5); Hartley & Zisserman, Multiple View Geometry (2003), §4.1.
+
+    Examples
+    --------
+    >>> src = np.array([[0.0, 0], [1, 0], [1, 1], [0, 1]])
+    >>> homography_dlt(src, 2 * src + 1).round(9) + 0.0
+    array([[2., 0., 1.],
+           [0., 2., 1.],
+           [0., 0., 1.]])
+    """
     src, dst = _check_plane_points(src, dst)
     T1, T2 = normalizing_transform(src), normalizing_transform(dst)
     s = _homogeneous(src) @ T1.T
@@ -817,7 +1776,7 @@ def homography_dlt(src, dst) -> np.ndarray:
     return H / H[2, 2]
 
 
-@dataclass
+@dataclass(repr=False)
 class HomographyResult:
     """Least-squares homography: H (h₃₃ = 1) and the adjustment (μ, m_h, r_ij, residuals in dst units)."""
 
@@ -826,15 +1785,58 @@ class HomographyResult:
 
     @property
     def residuals(self) -> np.ndarray:
+        """Residuals (n, 2) in the units of the destination coordinates."""
         return self.adjustment.residuals.reshape(-1, 2)
+
+    def __repr__(self) -> str:
+        rms = float(np.sqrt(np.mean(self.residuals ** 2)))
+        rows = "; ".join(" ".join(f"{v:.6g}" for v in row) for row in self.H)
+        return (f"HomographyResult: H = [{rows}]\n"
+                f"  μ = {self.adjustment.mu:.3g}, r.m.s. residual {rms:.3g}, {self.adjustment.iterations} iterations")
 
 
 def homography_lsq(src, dst, H0=None, weights=None, tol: float = 1e-12, max_iter: int = 50) -> HomographyResult:
     """Homography by iterated least squares on the destination coordinates (Gauss–Newton of §1.8).
 
     The residuals F_x = (h₁x + h₂y + h₃)/(h₇x + h₈y + 1) − x′ (and F_y) and their partial
-    derivatives come from :func:`photolib.derivations.homography_model`. ``H0`` defaults to
-    :func:`homography_dlt`. ``weights`` per point (n,) or per coordinate (n, 2).
+    derivatives come from :func:`photolib.derivations.homography_model`.
+
+    Parameters
+    ----------
+    src, dst : (n, 2) arrays
+        Corresponding points, n ≥ 4.
+    H0 : (3, 3) or (8,) array, optional
+        Start; :func:`homography_dlt` by default.
+    weights : (n,) or (n, 2) array, optional
+        Weights per point or per coordinate.
+    tol, max_iter
+        Convergence tolerance and iteration limit.
+
+    Returns
+    -------
+    HomographyResult
+        H (h₃₃ = 1) and the adjustment.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN in the points or in H0, bad weights.
+    DegenerateGeometryError
+        Collinear points, h₃₃ = 0 in H0.
+    ConvergenceError
+        No convergence within ``max_iter``.
+
+    References
+    ----------
+    Chibunichev (2022), §1.7, eq. (1.7.5); §1.8, eqs. (1.8.5)–(1.8.10).
+
+    Examples
+    --------
+    >>> src = np.array([[0.0, 0], [1, 0], [1, 1], [0, 1], [0.5, 0.2]])
+    >>> homography_lsq(src, 2 * src + 1).H.round(9) + 0.0
+    array([[2., 0., 1.],
+           [0., 2., 1.],
+           [0., 0., 1.]])
     """
     from . import derivations
 
@@ -843,9 +1845,13 @@ def homography_lsq(src, dst, H0=None, weights=None, tol: float = 1e-12, max_iter
     if H0 is None:
         H0 = homography_dlt(src, dst)
     H0 = np.asarray(H0, dtype=float)
+    if H0.shape not in ((3, 3), (8,)):
+        raise InputError(f"H0 must be a 3×3 matrix or h₁…h₈, got shape {H0.shape}")
+    if not np.all(np.isfinite(H0)):
+        raise InputError("H0 contains NaN or inf")
+    if H0.shape == (3, 3) and abs(H0[2, 2]) < 1e-12 * np.abs(H0).max():
+        raise DegenerateGeometryError("H0 has h₃₃ = 0: the 8-parameter form (h₃₃ = 1) cannot represent it")
     h0 = (H0 / H0[2, 2]).ravel()[:8] if H0.shape == (3, 3) else H0
-    if h0.shape != (8,) or not np.all(np.isfinite(h0)):
-        raise InputError("H0 must be a 3×3 matrix or h₁…h₈")
     P = point_weights(weights, n)
     residual_fn, jacobian_fn = derivations.homography_model().compile()
     data = (src[:, 0], src[:, 1], dst[:, 0], dst[:, 1])

@@ -448,3 +448,52 @@ def test_double_resection_with_height_control_and_bad_input():
         ip.double_resection(xy1, xy2, IO, np.full_like(XYZ, np.nan))
     with pytest.raises(InputError, match="aligned"):
         ip.double_resection(xy1, xy2, IO, XYZ[:3])
+
+
+# --- relative orientation without a start: convergent terrestrial pairs (issue 8) ---------------------
+def _convergent_pair(seed):
+    """Camera 1 looks horizontally at an object 30 m away; camera 2 on a circle about the object,
+    turned by a convergence angle of 60°–150°, small random tilts. Ground truth by construction."""
+    from photolib.rotation import rot_z
+    from photolib.synthetic import stereo_pair
+
+    rng = np.random.default_rng(seed)
+    gamma = np.radians(rng.uniform(60.0, 150.0))
+    heading = rng.uniform(-np.pi, np.pi)
+    e1 = ExteriorOrientation.from_degrees(0, 0, 0, 90 + rng.uniform(-3, 3), rng.uniform(-3, 3),
+                                          rng.uniform(-3, 3), order="wak")
+    turn = rot_z(heading)
+    e1 = ExteriorOrientation.from_matrix(np.zeros(3), turn @ e1.matrix, "wak")
+    centre = turn @ np.array([0.0, 30.0, 0.0])
+    R = rot_z(gamma * rng.choice([-1, 1]))
+    e2 = ExteriorOrientation.from_matrix(centre + R @ (e1.center - centre), R @ e1.matrix, "wak")
+    pts = rng.uniform(-7, 7, (15, 3)) + centre
+    io = InteriorOrientation(50.0)
+    return np.degrees(gamma), io, e1, e2, project(pts, e1, io), project(pts, e2, io)
+
+
+@pytest.mark.parametrize("system", ["dependent", "independent"])
+@pytest.mark.parametrize("order", ["kaw", "wak"])
+def test_relative_orientation_of_convergent_pairs_without_a_start(system, order):
+    """30 seeded pairs with 60°–150° convergence: the default start (closed form from E with the
+    cheirality test) reaches the true relative rotation and base direction in every case."""
+    wrong = []
+    for seed in range(30):
+        gamma, io, e1, e2, xy1, xy2 = _convergent_pair(seed)
+        ro = ip.relative_orientation(xy1, xy2, io, system=system, order=order)
+        rel_true = e1.matrix.T @ e2.matrix
+        b_true = e1.matrix.T @ (e2.center - e1.center)
+        ok = (np.allclose(ro.A1.T @ ro.A2, rel_true, atol=1e-8)
+              and np.allclose(ro.A1.T @ ro.base_direction, b_true / np.linalg.norm(b_true), atol=1e-8)
+              and ro.in_front == len(xy1))
+        if not ok:
+            wrong.append((seed, round(gamma, 1)))
+    assert not wrong, f"wrong relative orientation for (seed, convergence°) {wrong}"
+
+
+def test_relative_orientation_reports_a_zero_base():
+    from photolib.synthetic import stereo_pair
+
+    pair = stereo_pair(12, seed=1, centres=((0, 0, 1000.0), (0, 0, 1000.0)), angle_spread_deg=2.0, sigma=0.003)
+    with pytest.raises(DegenerateGeometryError, match="base"):
+        ip.relative_orientation(pair.xy1, pair.xy2, pair.io)

@@ -307,7 +307,7 @@ def test_essential_and_relative_orientation_exact():
         A2 = eo1.matrix.T @ eo2.matrix                      # camera 2 in the camera-1 (model) frame
         b = eo1.matrix.T @ (eo2.center - eo1.center)
         assert np.allclose(ro.A2, A2, atol=1e-9)
-        assert np.allclose(ro.base, b / np.linalg.norm(b), atol=1e-9)
+        assert np.allclose(ro.base_direction, b / np.linalg.norm(b), atol=1e-9)
         assert np.allclose([ro.by, ro.bz], [b[1] / b[0], b[2] / b[0]], atol=1e-9)
         assert np.allclose([ro.omega2, ro.alpha2, ro.kappa2],
                            ExteriorOrientation.from_matrix([0, 0, 0], A2, order).vector[3:], atol=1e-9)
@@ -327,7 +327,7 @@ def test_essential_and_pose_against_opencv():
     _, R_cv, t_cv, _ = cv2.recoverPose(E_cv, u1, u2, K)
     ro = pj.relative_orientation_projective(xy1, xy2, io)
     assert np.allclose(ro.A2, C_CV @ R_cv.T @ C_CV, atol=1e-6)     # X_cv2 = R_cv X_cv1 + t
-    assert np.allclose(ro.base, -(ro.A2 @ C_CV @ t_cv).ravel(), atol=1e-6)
+    assert np.allclose(ro.base_direction, -(ro.A2 @ C_CV @ t_cv).ravel(), atol=1e-6)
 
 
 def test_ransac_rejects_outliers():

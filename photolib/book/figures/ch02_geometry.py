@@ -23,7 +23,7 @@ import numpy as np
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 from ... import image_pair
-from ... import ch02_theory
+from .. import ch02_theory
 from ...camera import ExteriorOrientation, InteriorOrientation
 from ...single_image import project
 

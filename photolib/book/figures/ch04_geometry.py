@@ -9,8 +9,9 @@ The book has no figures in Chapter 4; these illustrate its statements on synthet
   projection centre as the control points flatten towards a plane.
 * :func:`epipolar_geometry` — §4.4: both images with corresponding points, epipolar lines
   l₂ = F r₁, l₁ = Fᵀ r₂ (layout x₂ᵀFx₁ = 0) and the epipoles (null vectors of F and Fᵀ).
-* :func:`essential_candidates`, :func:`essential_solutions` — the four (rotation, base) pairs of
-  an essential matrix and the cheirality test that keeps one.
+* :func:`essential_solutions` — the four (rotation, base) pairs of an essential matrix
+  (:func:`photolib.projective.essential_candidates`, in their canonical order) and the cheirality
+  test that keeps one.
 * :func:`ransac_matches` — RANSAC for F on matches with gross errors: inliers, outliers and the
   Sampson distances.
 * :func:`homography_rectification` — the plane-to-plane projective transformation (8 parameters)
@@ -30,6 +31,7 @@ from ...camera import ExteriorOrientation, InteriorOrientation
 from ...errors import DegenerateGeometryError
 from ...rotation import rot_y
 from ...single_image import project
+from ...synthetic import stereo_pair
 
 
 def _done(fig):
@@ -51,17 +53,12 @@ def synthetic_camera(n=20, relief=150.0, seed=0):
 def synthetic_pair(n=40, seed=1, sigma=0.0):
     """A stereo pair with the exterior orientation of the §4.4 example (f = 100 mm, B = 500 m,
     H = 1000 m; ω, α, κ = 1°, 3°, 2° and −2°, −1°, 5°), n ground points with ±50 m relief in the
-    overlap and image noise ``sigma`` (mm). Returns io, eo1, eo2, XYZ, xy1, xy2."""
-    rng = np.random.default_rng(seed)
-    io = InteriorOrientation(100.0)
-    eo1 = ExteriorOrientation.from_degrees(1000.0, 1000.0, 1000.0, 1.0, 3.0, 2.0)
-    eo2 = ExteriorOrientation.from_degrees(1500.0, 1000.0, 1000.0, -2.0, -1.0, 5.0)
-    XYZ = np.column_stack([rng.uniform(950, 1550, n), rng.uniform(450, 1550, n), rng.uniform(-50, 50, n)])
-    xy1, xy2 = project(XYZ, eo1, io), project(XYZ, eo2, io)
-    if sigma:
-        xy1 = xy1 + rng.normal(0, sigma, xy1.shape)
-        xy2 = xy2 + rng.normal(0, sigma, xy2.shape)
-    return io, eo1, eo2, XYZ, xy1, xy2
+    overlap and image noise ``sigma`` (mm), from :func:`photolib.synthetic.stereo_pair`.
+    Returns io, eo1, eo2, XYZ, xy1, xy2."""
+    pair = stereo_pair(n, seed=seed, centres=((1000.0, 1000.0, 1000.0), (1500.0, 1000.0, 1000.0)),
+                       angles=np.radians([[1.0, 3.0, 2.0], [-2.0, -1.0, 5.0]]),
+                       box=((950.0, 1550.0), (450.0, 1550.0)), relief=50.0, sigma=sigma)
+    return pair.io, pair.eo1, pair.eo2, pair.points, pair.xy1, pair.xy2
 
 
 # --- §4.2 coplanar control --------------------------------------------------------------------------
@@ -171,53 +168,23 @@ def epipolar_geometry(F, xy1, xy2, half=115.0, n_lines=8):
     return _done(fig)
 
 
-def essential_candidates(E, xy1, xy2, io):
-    """The four (A′₂, b) pairs of an essential matrix and how many points each puts in front.
-
-    ``E`` for r″ of (4.4.15) in the layout r₂″ᵀEr₁″ = 0. In Chapter-1 axes E₁ = D E D = A′₂ᵀ S_b
-    (A′₁ = E); with E₁ = U diag(1, 1, 0) Vᵀ the rotations are A′₂ᵀ = U W Vᵀ or U Wᵀ Vᵀ and
-    A′₂ᵀ b = ±u₃. For each candidate the rays are intersected (N₁r₁ − N₂A′₂r₂ = b, §2.4) and the
-    points with N₁ > 0 and N₂ > 0 (in front of both cameras) are counted.
-    Returns a list of dicts: A2, base, n_front, N1, N2.
-    """
-    D = projective.D_REFLECTION
-    r1 = projective.normalized_image_coordinates(xy1, io) @ D
-    r2 = projective.normalized_image_coordinates(xy2, io) @ D
-    U, _, Vt = np.linalg.svd(D @ E @ D)
-    U = U if np.linalg.det(U) > 0 else -U
-    Vt = Vt if np.linalg.det(Vt) > 0 else -Vt
-    W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
-    out = []
-    for R in (U @ W @ Vt, U @ W.T @ Vt):
-        for t in (U[:, 2], -U[:, 2]):
-            A2 = R.T
-            b = A2 @ t
-            r2m = r2 @ A2.T
-            c = np.cross(r1, r2m)
-            cc = np.einsum("ni,ni->n", c, c)
-            N1 = np.einsum("ni,ni->n", np.cross(b, r2m), c) / cc
-            N2 = np.einsum("ni,ni->n", np.cross(b, r1), c) / cc
-            out.append({"A2": A2, "base": b, "n_front": int(np.sum((N1 > 0) & (N2 > 0))), "N1": N1, "N2": N2})
-    return out
-
-
 def essential_solutions(E, xy1, xy2, io, n_points=12):
     """The four decompositions of E in a vertical section (X–Z of the model frame).
 
     Camera 1 at the origin, camera 2 at the unit base b; the viewing directions (−z axes of the
     cameras) as arrows; the points N₁r₁ (model units). Only one candidate puts them in front of both.
     """
-    cands = essential_candidates(E, xy1[:n_points], xy2[:n_points], io)
+    cands = projective.essential_candidates(E, xy1[:n_points], xy2[:n_points], io)
     D = projective.D_REFLECTION
     r1 = projective.normalized_image_coordinates(xy1[:n_points], io) @ D
-    best = max(cands, key=lambda c: c["n_front"])
-    Pb = best["N1"][:, None] * r1
-    lim = max(2.0, 1.15 * np.abs(np.vstack([Pb[:, [0, 2]], best["base"][[0, 2]][None]])).max())
+    best = max(cands, key=lambda c: c.n_front)
+    Pb = best.N1[:, None] * r1
+    lim = max(2.0, 1.15 * np.abs(np.vstack([Pb[:, [0, 2]], best.base[[0, 2]][None]])).max())
     fig, axes = plt.subplots(1, 4, figsize=(14, 4.0), sharey=True)
     for ax, cand, k in zip(axes, cands, range(1, 5)):
-        b, A2 = cand["base"], cand["A2"]
-        P = np.clip((cand["N1"][:, None] * r1)[:, [0, 2]], -lim, lim)    # points beyond the box on its edge
-        good = (cand["N1"] > 0) & (cand["N2"] > 0)
+        b, A2 = cand.base, cand.A2
+        P = np.clip((cand.N1[:, None] * r1)[:, [0, 2]], -lim, lim)    # points beyond the box on its edge
+        good = (cand.N1 > 0) & (cand.N2 > 0)
         ax.plot(P[good, 0], P[good, 1], "o", color="C2", ms=4, label="in front of both")
         ax.plot(P[~good, 0], P[~good, 1], "x", color="C3", ms=5, label="behind a camera")
         for S, A, name in ((np.zeros(3), np.eye(3), "S₁"), (b, A2, "S₂")):
@@ -226,7 +193,7 @@ def essential_solutions(E, xy1, xy2, io, n_points=12):
             ax.annotate("", xy=(S[0] + view[0], S[2] + view[2]), xytext=(S[0], S[2]),
                         arrowprops=dict(arrowstyle="->", color="k"))
             ax.annotate(name, (S[0], S[2]), xytext=(4, 4), textcoords="offset points")
-        ax.set_title(f"candidate {k}: {cand['n_front']}/{n_points} in front", fontsize=10)
+        ax.set_title(f"candidate {k}: {cand.n_front}/{n_points} in front", fontsize=10)
         ax.set_xlabel("X (model, |b| = 1)")
         ax.set_xlim(-lim, lim)
         ax.set_ylim(-lim, lim)
