@@ -400,17 +400,6 @@ def fiducial_similarity(measured, Lx, Ly) -> FiducialSimilarity:
     return FiducialSimilarity(float(a0), float(b0), phi, float(Lx / len12), float(Ly / len43))
 
 
-def _book_origin(measured):
-    """(1.11.7) exactly as printed, with the slopes c₁ and c₂ (fails when line 3–4 is vertical)."""
-    p = as_points(measured, 2, "measured fiducials")
-    (x1, y1), (x2, y2), (x3, y3), (x4, y4) = p
-    with np.errstate(divide="ignore", invalid="ignore"):
-        c1 = (y2 - y1) / (x2 - x1)
-        c2 = (y3 - y4) / (x3 - x4)
-        a0 = ((y4 - y1) + c1 * x1 - c2 * x4) / (c1 - c2)
-    return float(a0), float(y1 + c1 * (a0 - x1))
-
-
 def _as_similarity(params) -> FiducialSimilarity:
     if isinstance(params, FiducialSimilarity):
         return params

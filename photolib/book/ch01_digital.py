@@ -10,6 +10,7 @@ import numpy as np
 import sympy as sp
 
 from .. import digital, scanners
+from ..camera import as_points
 
 
 # ---------------------------------------------------------------- §1.10 worked examples
@@ -177,3 +178,20 @@ def formula_1_11_10(inputs: dict) -> dict:
     return {"printed_equals_derived": all(d == 0 for d in diff),
             "equal_when_kx_eq_ky": all(sp.simplify(d.subs(ky, kx)) == 0 for d in diff),
             "difference_is_a2_dk": all(sp.simplify(d - e) == 0 for d, e in zip(diff, expected_diff))}
+
+
+def book_origin(measured):
+    """The scanner origin a₀, b₀ by the slope form (1.11.7) exactly as printed.
+
+    Uses the slopes c₁ of line 1–2 and c₂ of line 3–4 of the four side fiducials, so it fails
+    (returns NaN) when line 3–4 is vertical — the case an aligned scan produces; the library's
+    :func:`photolib.interior.fiducial_similarity` solves the same intersection as a 2×2 system
+    and has no such case. Shown in the Chapter 1 notebook beside the library's answer.
+    """
+    p = as_points(measured, 2, "measured fiducials")
+    (x1, y1), (x2, y2), (x3, y3), (x4, y4) = p
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c1 = (y2 - y1) / (x2 - x1)
+        c2 = (y3 - y4) / (x3 - x4)
+        a0 = ((y4 - y1) + c1 * x1 - c2 * x4) / (c1 - c2)
+    return float(a0), float(y1 + c1 * (a0 - x1))
