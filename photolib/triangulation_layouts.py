@@ -416,8 +416,8 @@ def normal_matrix_structure(system: BundleSystem) -> dict:
     -------
     dict
         ``N11_block`` / ``N22_block`` ("6×6" / "3×3" when N₁₁ / N₂₂ are block-diagonal with full
-        blocks of that size, else "not block-diagonal"), ``N12_zero_fraction`` (share of exactly
-        zero entries of N₁₂) and ``N12_pattern`` ("sparse" when more than half of N₁₂ is zero,
+        blocks of that size, else "not block-diagonal"), ``N12_zero_fraction`` (share of structurally
+        zero entries of N₁₂: no row of A has non-zeros in both columns) and ``N12_pattern`` ("sparse" when more than half of N₁₂ is zero,
         else "dense").
 
     Raises
@@ -440,9 +440,12 @@ def normal_matrix_structure(system: BundleSystem) -> dict:
     """
     if not isinstance(system, BundleSystem):
         raise InputError(f"expected a BundleSystem, got {type(system).__name__}")
-    N, _ = system.normal()
     q = system.n_eo
-    nz = N != 0
+    # The structure of N = AᵀPA from the structure of A (P is positive and diagonal): an entry is
+    # structurally non-zero when two columns of A share a row. Integer arithmetic, so that an
+    # accidental floating-point cancellation (which differs between BLAS kernels) cannot count.
+    rows_of = (np.asarray(system.A) != 0).astype(np.int64)
+    nz = (rows_of.T @ rows_of) != 0
 
     def block_kind(M, size):
         n_blocks = M.shape[0] // size
