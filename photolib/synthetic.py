@@ -1310,6 +1310,23 @@ class StereoPair:
     xy2_true: np.ndarray
     sigma: float
 
+    def __post_init__(self):
+        from .camera import as_points
+        checked = {"centres": as_points(self.centres, 3, "centres"), "angles": as_points(self.angles, 3, "angles")}
+        if checked["centres"].shape != (2, 3) or checked["angles"].shape != (2, 3):
+            raise InputError(f"a stereo pair has two centres and two angle triples, got shapes "
+                             f"{checked['centres'].shape} and {checked['angles'].shape}")
+        checked["points"] = as_points(self.points, 3, "points")
+        n = len(checked["points"])
+        for name in ("xy1", "xy2", "xy1_true", "xy2_true"):
+            checked[name] = as_points(getattr(self, name), 2, name)
+            if len(checked[name]) != n:
+                raise InputError(f"{name} has {len(checked[name])} rows for {n} object points")
+        if not (np.isfinite(self.sigma) and self.sigma >= 0):
+            raise InputError(f"sigma must be a finite non-negative number, got {self.sigma!r}")
+        for name, value in checked.items():          # the dataclass is frozen
+            object.__setattr__(self, name, value)
+
     def _eo(self, i):
         from .camera import ExteriorOrientation
         return ExteriorOrientation(*map(float, self.centres[i]), *map(float, self.angles[i]), order=self.order)

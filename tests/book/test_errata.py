@@ -5,7 +5,7 @@ import types
 
 import pytest
 
-from photolib import errata as er
+from photolib.book import errata as er
 from photolib.book.textbook import load_chapter
 
 CHAPTER = '''

@@ -12,7 +12,7 @@ from photolib import image_pair as ip
 from photolib import projective as pj
 from photolib.camera import ExteriorOrientation, InteriorOrientation
 from photolib.errors import DegenerateGeometryError, InputError, PointBehindCameraError
-from photolib.synthetic import stereo_pair
+from photolib.synthetic import StereoPair, stereo_pair
 
 IO = InteriorOrientation(100.0)
 PAIR = stereo_pair(12, seed=3, centres=((0.0, 0.0, 1000.0), (400.0, 5.0, 1003.0)), angle_spread_deg=2.0)
@@ -250,6 +250,12 @@ CASES = [
     Case(stereo_pair, (8,), {"ground_xy": np.zeros((4, 3))}, raises=InputError, why="ground_xy with 3 columns"),
     Case(stereo_pair, (8,), {"centres": ((0, 0, 1000), (400, 0, 1000)), "mean_height": 2000.0, "relief": 1.0},
          raises=PointBehindCameraError, why="points above the cameras"),
+    Case(StereoPair, (PAIR.io, "kaw", PAIR.centres, PAIR.angles, np.full((12, 3), NAN), PAIR.xy1, PAIR.xy2,
+                      PAIR.xy1_true, PAIR.xy2_true, 0.0), raises=InputError, why="NaN object points"),
+    Case(StereoPair, (PAIR.io, "kaw", PAIR.centres[:1], PAIR.angles, PAIR.points, PAIR.xy1, PAIR.xy2,
+                      PAIR.xy1_true, PAIR.xy2_true, 0.0), raises=InputError, why="one centre"),
+    Case(StereoPair, (PAIR.io, "kaw", PAIR.centres, PAIR.angles, PAIR.points, PAIR.xy1[:5], PAIR.xy2,
+                      PAIR.xy1_true, PAIR.xy2_true, 0.0), raises=InputError, why="fewer image points than object points"),
 ]
 
 
