@@ -689,8 +689,11 @@ def iteration_history(*args, **kwargs) -> IterationHistory:
 def intersection_forms(r1, r2, B) -> tuple:
     """The three expressions of N at line 212, as printed: (numerators, denominators), each (n, 3).
 
-    N = (B_X Z₂* − B_Z Y₂*)/(Y₁*Z₂* − Z₁*Y₂*) = (B_Z X₂* − B_Y Z₂*)/(Z₁*X₂* − X₁*Z₂*)
-      = (B_Y Y₂* − B_X X₂*)/(X₁*Y₂* − Y₁*X₂*).
+    ::
+
+        N = (B_X Z₂* − B_Z Y₂*)/(Y₁*Z₂* − Z₁*Y₂*) = (B_Z X₂* − B_Y Z₂*)/(Z₁*X₂* − X₁*Z₂*)
+          = (B_Y Y₂* − B_X X₂*)/(X₁*Y₂* − Y₁*X₂*).
+
     They are the components of N(r₁ × r₂) = b × r₂ with b = (B_Y, B_X, B_Z): form k is 0/0 when
     the k-th component of r₁ × r₂ vanishes.
 

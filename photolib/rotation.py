@@ -1,7 +1,7 @@
 """Rotation matrices of the exterior orientation — Chapter 1, §1.3.
 
 The book defines the direction-cosine matrix **A** (1.3.1): it maps vectors of the camera
-system *Sxyz* into the object system *OXYZ*; object → camera uses **A**ᵀ. Two sequences of
+system *Sxyz* into the object system *OXYZ*; object → camera uses its transpose, Aᵀ. Two sequences of
 elementary rotations are given and both are used:
 
 * ``"wak"`` — ω–α–κ, ``A = A_ω A_α A_κ`` (1.3.2), angles back by (1.3.3). The text calls it the

@@ -593,7 +593,11 @@ def fit_strip_polynomial(network, geodetic, kappa: float = 0.0, *, rcond: float 
     kappa : float
         κ_M, the angle of the strip axis in the object frame (fig. 3.6, :func:`strip_axis_angle`);
         the fit is made in X* = A_κᵀX (3.2.6).
+    rcond : float
+        Rank threshold of the normal equations.
 
+    Notes
+    -----
     Each point gives three linear equations X + A₀ + A₁X + A₂Y + A₃XY + A₄X² − X_и = v (3.2.5),
     15 unknowns in all, so at least 5 points spread along and across the strip (fig. 3.5). The
     system is linear: one step of :func:`photolib.lsq.solve_normal_equations`. Internally the
@@ -1106,18 +1110,19 @@ def adjust_independent_units(units, control=None, gnss=None, *, adjacency=None, 
         Unit pairs that give tie equations (default: every pair sharing a point).
     sigma_tie, sigma_control, sigma_gnss : float
         A-priori standard deviations (m) of the three kinds of equations; weights p = 1/σ².
-
-    The unknowns are the seven elements X₀, Y₀, Z₀, ω_M, α_M, κ_M, t of every unit, N = 7n
-    (3.3.6). The correction equations (:func:`unit_equations`) are iterated by
-    :func:`photolib.lsq.gauss_newton` from :func:`initial_transforms`. Before iterating, the rank
-    of the design is checked (:func:`_datum_check`): a single strip with GNSS centres only rolls
-    freely about its flight line (§3.4) and raises :class:`DegenerateGeometryError` saying so.
-    Final coordinates are the means over the units (3.3.5)/(3.4.4).
-
     initial : (n_units, 7) array, optional
         Start values (default :func:`initial_transforms`).
     rcond, tol, max_iter
         Rank threshold of the datum check, convergence tolerance and iteration limit.
+
+    Notes
+    -----
+    The unknowns are the seven elements X₀, Y₀, Z₀, ω_M, α_M, κ_M, t of every unit, N = 7n
+    (3.3.6). The correction equations (:func:`unit_equations`) are iterated by
+    :func:`photolib.lsq.gauss_newton` from :func:`initial_transforms`. Before iterating, the rank
+    of the design is checked: a single strip with GNSS centres only rolls freely about its
+    flight line (§3.4) and raises :class:`DegenerateGeometryError` saying so. Final coordinates
+    are the means over the units (3.3.5)/(3.4.4).
 
     Returns
     -------

@@ -7,7 +7,7 @@ Used three ways, always through :func:`check_example` / :func:`check_formula`:
 Status rules (see ``textbook/README.md``):
 
 * ``reproduced`` — the computed value rounded to the printed decimals equals the printed value.
-* ``input-rounding`` — it does not, but |computed − printed| ≤ the recorded bound.
+* ``input-rounding`` — it does not, but ``|computed − printed|`` ≤ the recorded bound.
 * ``erratum`` — it does not, and the computed value equals the recorded correct one; if the
   entry says ``as_printed = true`` the example's "as printed" computation must reproduce the
   printed value.

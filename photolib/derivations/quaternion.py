@@ -1,7 +1,7 @@
 """The quaternion rotation model in sympy: Chapter 1, §1.3, eq. (1.3.7).
 
 A quaternion q = (v, d), v = (a, b, c), gives the Euler–Rodrigues matrix
-(d² − v·v)E + 2vvᵀ + 2d[v]×: |q|² times the counter-clockwise rotation by 2·atan2(|v|, d)
+``(d² − v·v)E + 2vvᵀ + 2d[v]×``: ``|q|²`` times the counter-clockwise rotation by ``2·atan2(|v|, d)``
 about v — the matrix printed as (1.3.7). Divided by m = a² + b² + c² + d² it is a rotation for
 every non-zero q (the rational parametrisation used in §1.7).
 """
