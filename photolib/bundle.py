@@ -21,7 +21,8 @@ The Jacobian is derived by sympy (:func:`photolib.derivations.bundle_collinearit
 printed to numpy code once (:func:`photolib.derivations.numpy_source`); the printed code is kept
 in ``photolib/_bundle_generated.py`` so that adjusting a block does not import sympy (≈ 50 MB,
 ≈ 1 s). ``tests/test_bundle.py`` regenerates it from sympy and fails if it differs; rewrite it
-with ``python -m photolib.bundle``.
+with ``python -m photolib.bundle``. The bundle's own equations use the printed model of one observation
+(``collinearity_<order>_point``) inside a loop compiled by numba (:mod:`photolib._block_kernels`).
 
 The linear algebra is the one engine of :mod:`photolib.lsq`: its block path
 :func:`~photolib.lsq.block_gauss_newton` eliminates the points (3.5.16) with 3×3 block inverses
@@ -254,14 +255,18 @@ def bundle_correction_equations(image, point, xy, cameras, points, io: InteriorO
     ((2, 6), (2, 3), True)
     """
     (weights,) = _renamed(legacy, "bundle_correction_equations", weights=weights)
-    _zstar_check(cameras, points, image, point, order)
-    fn = getattr(_bundle_generated, f"collinearity_{order}")
-    c, X = cameras[image], points[point]
-    F, J = fn(c[:, 0], c[:, 1], c[:, 2], c[:, 3], c[:, 4], c[:, 5], X[:, 0], X[:, 1], X[:, 2],
-              xy[:, 0], xy[:, 1], io.f, io.x0, io.y0)
-    J = J.reshape(2, 9, -1).transpose(2, 0, 1)
-    return BlockCorrectionEquations(frame=image, point=point, B1=J[:, :, :6], B2=J[:, :, 6:], L=F.T,
-                                    P=weights)
+    from . import _block_kernels
+    check_order(order)
+    image, point = np.asarray(image, np.intp), np.asarray(point, np.intp)
+    m = image.size
+    B1, B2, L, zstar = np.empty((m, 2, 6)), np.empty((m, 2, 3)), np.empty((m, 2)), np.empty(m)
+    # the sympy-printed model of one observation, in a compiled loop over the observations
+    _block_kernels.collinearity(order == "wak", np.ascontiguousarray(cameras, dtype=float),
+                                np.ascontiguousarray(points, dtype=float), image, point,
+                                np.ascontiguousarray(xy, dtype=float), float(io.f), float(io.x0), float(io.y0),
+                                B1, B2, L, zstar)
+    _raise_behind(zstar, point)
+    return BlockCorrectionEquations(frame=image, point=point, B1=B1, B2=B2, L=L, P=weights)
 
 
 def _per_item(sigma, n, what):
@@ -279,19 +284,14 @@ def _datum_rank(anchor_xyz, anchor_mask, angle_rows, centre, scale):
     infinitesimal similarity as dX = t + r × X + s·X; INS angles by ≈ r. The block is free to
     move in the directions of the null space of these rows — its datum defect.
     """
-    rows = []
-    for X, mask in zip(anchor_xyz, anchor_mask):
-        Xc = (X - centre) / scale
-        D = np.array([[1, 0, 0, 0, Xc[2], -Xc[1], Xc[0]],
-                      [0, 1, 0, -Xc[2], 0, Xc[0], Xc[1]],
-                      [0, 0, 1, Xc[1], -Xc[0], 0, Xc[2]]], dtype=float)
-        rows.append(D[mask])
-    for mask in angle_rows:
-        D = np.hstack([np.zeros((3, 3)), np.eye(3), np.zeros((3, 1))])
-        rows.append(D[mask])
-    if not rows:
-        return 0
-    M = np.vstack(rows)
+    Xc = (np.asarray(anchor_xyz, dtype=float).reshape(-1, 3) - centre) / scale
+    one, zero = np.ones(len(Xc)), np.zeros(len(Xc))
+    D = np.stack([np.column_stack([one, zero, zero, zero, Xc[:, 2], -Xc[:, 1], Xc[:, 0]]),
+                  np.column_stack([zero, one, zero, -Xc[:, 2], zero, Xc[:, 0], Xc[:, 1]]),
+                  np.column_stack([zero, zero, one, Xc[:, 1], -Xc[:, 0], zero, Xc[:, 2]])], axis=1)
+    angles = np.hstack([np.zeros((3, 3)), np.eye(3), np.zeros((3, 1))])
+    ins = np.asarray(angle_rows, bool).reshape(-1, 3)
+    M = np.vstack([D[np.asarray(anchor_mask, bool).reshape(-1, 3)], np.broadcast_to(angles, (len(ins), 3, 7))[ins]])
     if M.size == 0:
         return 0
     sv = np.linalg.svd(M, compute_uv=False)
@@ -403,8 +403,14 @@ def _prepare_block(observations, cameras0, points0, io, control, control_sigma, 
         raise InputError(f"images {weak[:10].tolist()} have fewer than three measured points")
 
     # connectivity: images linked through common points
-    incidence = sparse.csr_matrix((np.ones(image.size), (image, point)), shape=(n, k))
-    n_parts, labels = connected_components(incidence @ incidence.T, directed=False)
+    # (the graph of images and points, an edge image → n + point for every observation, undirected)
+    by_image = np.argsort(image, kind="stable")
+    edges = sparse.csr_matrix((np.ones(image.size), n + point[by_image],
+                               np.concatenate([np.searchsorted(image[by_image], np.arange(n + 1)),
+                                               np.full(k, image.size)])), shape=(n + k, n + k))
+    _, labels = connected_components(edges, directed=False)
+    _, labels = np.unique(labels[:n], return_inverse=True)
+    n_parts = int(labels.max()) + 1
     if n_parts > 1:
         sizes = np.bincount(labels)
         raise DegenerateGeometryError(
@@ -816,7 +822,11 @@ def _io_vector(io: InteriorOrientation) -> np.ndarray:
 
 def _zstar_check(cameras, points, image, point, order):
     A = rotation_matrix(cameras[:, 3], cameras[:, 4], cameras[:, 5], order)
-    zstar = np.einsum("ki,ki->k", A[image][:, :, 2], points[point] - cameras[image, :3])
+    _raise_behind(np.einsum("ki,ki->k", A[image][:, :, 2], points[point] - cameras[image, :3]), point)
+
+
+def _raise_behind(zstar, point):
+    """PointBehindCameraError for the observations whose point has z* ≥ 0 (behind the image)."""
     if np.any(zstar >= 0):
         bad = np.flatnonzero(zstar >= 0)
         raise PointBehindCameraError(
@@ -1802,6 +1812,29 @@ def rolling_shutter_bundle_adjustment(observations, cameras0, points0, io: Inter
                                 n_unknowns=q * b.n + 3 * int(b.free_points.sum()))
 
 
+def _scalar_source(order: str) -> str:
+    """One observation of the bundle model as scalar code (for the compiled loop of :mod:`photolib._block_kernels`).
+
+    The same sympy expressions as ``collinearity_<order>`` — residuals F_x, F_y and the 18
+    derivatives a₁…a₉, b₁…b₉ (3.5.2) — plus z* of (1.4.10), all through one common-subexpression
+    elimination, returned as a tuple of 21 floats.
+    """
+    import sympy as sp
+    from sympy.printing.numpy import NumPyPrinter
+    from .derivations import bundle_collinearity_model
+    from .derivations.collinearity import collinearity_terms
+    model = bundle_collinearity_model(order)
+    exprs = list(model.residuals) + list(model.jacobian()) + [collinearity_terms(order)[2]]
+    replacements, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("_t"), optimizations="basic")
+    printer = NumPyPrinter({"fully_qualified_modules": True, "inline": True})
+    args = [printer.doprint(a) for a in list(model.parameters) + list(model.data)]
+    lines = [f"def collinearity_{order}_point({', '.join(args)}):",
+             f'    """One observation of {model.name!r}: (F_x, F_y, a₁…a₉, b₁…b₉, z*) as floats."""']
+    lines += [f"    {printer.doprint(sym)} = {printer.doprint(expr)}" for sym, expr in replacements]
+    lines.append(f"    return ({', '.join(printer.doprint(e) for e in reduced)})")
+    return "\n".join(lines) + "\n"
+
+
 def generated_source() -> str:
     """Text of ``photolib/_bundle_generated.py``, printed from the sympy models (imports sympy)."""
     from .derivations import (bundle_collinearity_model, numpy_source, rig_collinearity_model, rolling_shutter_model,
@@ -1813,6 +1846,8 @@ def generated_source() -> str:
              "", "import numpy", ""]
     for order in ("kaw", "wak"):
         parts += ["", numpy_source(bundle_collinearity_model(order), f"collinearity_{order}")]
+    for order in ("kaw", "wak"):
+        parts += ["", _scalar_source(order)]
     for model, name in ((self_calibration_model, "selfcal"), (rig_collinearity_model, "rig"),
                         (rolling_shutter_model, "rolling")):
         for order in ("kaw", "wak"):

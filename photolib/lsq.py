@@ -36,6 +36,7 @@ p_i = 1/m_i² or a matrix P); the sign convention is B·δ + L = V, δ = −Q·B
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import time
 from dataclasses import dataclass, field
@@ -927,20 +928,6 @@ def _block_sum(index, blocks, n):
     return np.asarray(summing @ flat).reshape((n,) + blocks.shape[1:])
 
 
-def _normal_blocks(index, A, B, n, chunk: int = 16384):
-    """Σ_k A[k]ᵀ·B[k] over the observations k of each group i = index[k] → (n, a, b), (3.5.8).
-
-    With A = P·B₁, B = [B₁ | L] (the correction equations bordered by their free terms) and the
-    image of each observation as index, the result is [N₁₁ | B₁ᵀPL]. Observations are taken in
-    chunks, so the m per-observation products are never held at once.
-    """
-    out = np.zeros((n, A.shape[2], B.shape[2]))
-    for start in range(0, index.shape[0], chunk):
-        part = slice(start, start + chunk)
-        out += _block_sum(index[part], np.einsum("kri,krj->kij", A[part], B[part]), n)
-    return out
-
-
 def _block_diagonal(blocks):
     """A scipy.sparse block-diagonal matrix (BSR) from an (n, b, b) stack."""
     from scipy import sparse
@@ -949,40 +936,31 @@ def _block_diagonal(blocks):
 
 
 def _invert_3x3_blocks(blocks, rcond):
-    """Vectorised inverses of the 3×3 diagonal blocks of N₂₂ (one per point).
+    """Inverses of the 3×3 diagonal blocks of N₂₂ (one per point), in a compiled loop.
 
-    Each block is scaled to unit diagonal first; a block whose smallest eigenvalue is below
-    ``rcond`` (rays intersecting at a grazing angle, a point not determined) raises
-    :class:`DegenerateGeometryError` naming the points. With unit diagonal the other two
-    eigenvalues have λ₂·λ₃ ≤ (3/2)², so λ_min ≥ 4·det/9: eigenvalues are computed only for the
-    few blocks whose determinant does not already settle it.
+    Each block is scaled to unit diagonal first and inverted by its adjugate (closed form); a
+    block whose smallest eigenvalue is below ``rcond`` (rays intersecting at a grazing angle, a
+    point not determined) raises :class:`DegenerateGeometryError` naming the points. With unit
+    diagonal the other two eigenvalues have λ₂·λ₃ ≤ (3/2)², so λ_min ≥ 4·det/9: eigenvalues are
+    computed only for the few blocks whose determinant does not already settle it.
     """
-    d = np.sqrt(np.einsum("kii->ki", blocks))
-    if np.any(~(d > 0)):
-        bad = np.flatnonzero(~np.all(d > 0, axis=1))
-        raise DegenerateGeometryError(f"points {bad[:10].tolist()} are not determined by any observation")
-    outer = d[:, :, None] * d[:, None, :]
-    scaled = blocks / outer
-    # adjugate (cofactors) of the symmetric 3×3 blocks: closed form, vectorised over the points
-    a, b, c = scaled[:, 0, 0], scaled[:, 0, 1], scaled[:, 0, 2]
-    e, f, i = scaled[:, 1, 1], scaled[:, 1, 2], scaled[:, 2, 2]
-    adj = np.empty_like(scaled)
-    adj[:, 0, 0] = e * i - f * f
-    adj[:, 0, 1] = adj[:, 1, 0] = c * f - b * i
-    adj[:, 0, 2] = adj[:, 2, 0] = b * f - c * e
-    adj[:, 1, 1] = a * i - c * c
-    adj[:, 1, 2] = adj[:, 2, 1] = b * c - a * f
-    adj[:, 2, 2] = a * e - b * b
-    det = a * adj[:, 0, 0] + b * adj[:, 0, 1] + c * adj[:, 0, 2]
-    suspect = np.flatnonzero(~(4.0 * det / 9.0 >= rcond))
-    low = np.linalg.eigvalsh(scaled[suspect])[:, 0] if suspect.size else np.zeros(0)
-    if np.any(~(low >= rcond)):
-        bad = suspect[~(low >= rcond)]
-        raise DegenerateGeometryError(
-            f"points {bad[:10].tolist()} are not determined: their rays are (nearly) parallel "
-            f"(smallest scaled eigenvalue {np.nanmin(low):.1e})")
-    adj /= det[:, None, None] * outer
-    return adj
+    from . import _block_kernels as kernels
+    blocks = np.ascontiguousarray(blocks, dtype=float)
+    inverse = np.empty_like(blocks)
+    status = np.zeros(blocks.shape[0], np.int8)
+    kernels.invert_3x3(blocks, rcond, inverse, status)
+    if status.any():
+        bad = np.flatnonzero(status == 1)
+        if bad.size:
+            raise DegenerateGeometryError(f"points {bad[:10].tolist()} are not determined by any observation")
+        suspect = np.flatnonzero(status == 2)
+        d = np.sqrt(np.einsum("kii->ki", blocks[suspect]))
+        low = np.linalg.eigvalsh(blocks[suspect] / (d[:, :, None] * d[:, None, :]))[:, 0]
+        if np.any(~(low >= rcond)):
+            raise DegenerateGeometryError(
+                f"points {suspect[~(low >= rcond)][:10].tolist()} are not determined: their rays are (nearly) "
+                f"parallel (smallest scaled eigenvalue {np.nanmin(low):.1e})")
+    return inverse
 
 
 def _band_ordering(S):
@@ -1019,41 +997,6 @@ def _band_ordering(S):
     return (q * order[:, None] + np.arange(q)).ravel(), q * width + q - 1
 
 
-def _band_layout(S, cache=None):
-    """Where every entry of a block-sparse (BSR, q×q blocks) S goes in the lower band of :class:`_Factorisation`.
-
-    The renumbering (:func:`_band_ordering`) and the band positions depend only on the block
-    pattern of S, which is the same in every iteration of an adjustment; with a ``cache`` dict
-    they are computed once and reused while the pattern (``indptr``, ``indices``) is unchanged.
-
-    Returns a dict: ``order``, ``bandwidth``, and for every entry used (i ≥ j after renumbering)
-    its index in ``S.data.ravel()`` (``source``), its flat index in the Fortran-ordered band
-    (``target``), and its original row and column (``row``, ``col``) for the scaling.
-    """
-    if cache is not None:
-        old = cache.get("band_layout")
-        if old is not None and np.array_equal(old["indptr"], S.indptr) and np.array_equal(old["indices"], S.indices):
-            return old
-    q = S.blocksize[0]
-    order, b = _band_ordering(S)
-    n = S.shape[0]
-    position = np.empty(n, np.intp)
-    position[order] = np.arange(n)
-    brow = np.repeat(np.arange(S.indptr.size - 1), np.diff(S.indptr))
-    row = (brow[:, None, None] * q + np.arange(q)[None, :, None] + np.zeros((1, 1, q), np.intp)).ravel()
-    col = (S.indices[:, None, None] * q + np.arange(q)[None, None, :] + np.zeros((1, q, 1), np.intp)).ravel()
-    i, j = position[row], position[col]
-    used = np.flatnonzero(i >= j)
-    small = np.int32 if max(S.data.size, (b + 1) * n) < 2 ** 31 else np.intp     # halves the cached index arrays
-    layout = {"order": order, "bandwidth": b, "source": used.astype(small),
-              "target": ((i - j)[used] + (b + 1) * j[used]).astype(small),
-              "row": row[used].astype(small), "col": col[used].astype(small),
-              "indptr": S.indptr.copy(), "indices": S.indices.copy()}
-    if cache is not None:
-        cache["band_layout"] = layout
-    return layout
-
-
 def _blas_on_one_thread():
     """A context in which BLAS and LAPACK run on one thread (threadpoolctl, a runtime dependency).
 
@@ -1063,6 +1006,9 @@ def _blas_on_one_thread():
     (benchmarks/README.md).
     """
     return _blas_controller().limit(limits=1, user_api="blas")
+
+
+_ONE_THREAD_FROM = 200_000      # stored numbers of S from which the factorisation runs on one BLAS thread
 
 
 @functools.lru_cache(maxsize=None)
@@ -1080,56 +1026,56 @@ class _Factorisation:
     then factorises the lower band in place — n·(b + 1) numbers for a half-bandwidth b, the only
     large array (a general sparse LU would keep both L and U). An aerial block keeps b at about
     one strip of images whatever the number of strips. Systems of up to ``dense_limit`` unknowns
-    use the dense Cholesky (``dpotrf``).
+    use the dense Cholesky (``dpotrf``). The block solver builds the scaled band directly
+    (:meth:`from_band`); a sparse S is accepted for the other callers.
 
     Every pivot of the scaled matrix is an L_ii² in (0, 1]; one ≤ ``rcond`` (or a failed
     factorisation) means S is singular — a datum defect — and raises DegenerateGeometryError.
     """
 
-    def __init__(self, S, rcond, dense_limit=0, chunk: int = 1 << 17, cache: dict | None = None):
+    def __init__(self, S, rcond, dense_limit=0, chunk: int = 1 << 17):
         from scipy import sparse
-        from scipy.linalg import lapack
         n = S.shape[0]
         d = np.sqrt(S.diagonal())
-        if np.any(~(d > 0)):
-            raise DegenerateGeometryError(
-                f"image unknowns {np.flatnonzero(~(d > 0))[:10].tolist()} are not determined by any observation")
-        self.n = n
-        self.scale = 1.0 / d
-        self.dense = n <= dense_limit
-        layout = None
-        if not self.dense and sparse.issparse(S) and S.format == "bsr" and S.blocksize[0] == S.blocksize[1]:
-            layout = _band_layout(S, cache)
-            self.order, b = layout["order"], layout["bandwidth"]
-        elif self.dense:
-            self.order, b = np.arange(n), n - 1
-        else:
-            self.order, b = _band_ordering(S)
+        _check_diagonal(d)
+        order, b = (np.arange(n), n - 1) if n <= dense_limit else _band_ordering(S)
+        position = np.empty(n, np.intp)
+        position[order] = np.arange(n)
+        scale = 1.0 / d
         band = np.zeros((b + 1, n), order="F")         # Fortran order: LAPACK works in it without a copy
-        if layout is not None:
-            # the lower band straight from the q×q blocks: one precomputed target per used entry
-            vals = S.data.reshape(-1)[layout["source"]]
-            band.reshape(-1, order="F")[layout["target"]] = \
-                vals * self.scale[layout["row"]] * self.scale[layout["col"]]
-        else:
-            position = np.empty(n, np.intp)
-            position[self.order] = np.arange(n)
-            # lower band of the scaled, renumbered S in LAPACK storage: band[i − j, j] = S_ij, i ≥ j
-            # (filled in chunks of the non-zeros, so no full-size index arrays are held)
-            S = sparse.coo_matrix(S)
-            for start in range(0, S.nnz, chunk):
-                part = slice(start, start + chunk)
-                row, col = S.row[part], S.col[part]
-                i, j = position[row], position[col]
-                lower = i >= j
-                np.add.at(band, (i[lower] - j[lower], j[lower]),
-                          (S.data[part] * self.scale[row] * self.scale[col])[lower])
-        del S
-        with _blas_on_one_thread():
-            if self.dense:       # the same numbers as a full lower triangle (row i − j, column j → i, j)
+        # lower band of the scaled, renumbered S in LAPACK storage: band[i − j, j] = S_ij, i ≥ j
+        # (filled in chunks of the non-zeros, so no full-size index arrays are held)
+        S = sparse.coo_matrix(S)
+        for start in range(0, S.nnz, chunk):
+            part = slice(start, start + chunk)
+            row, col = S.row[part], S.col[part]
+            i, j = position[row], position[col]
+            lower = i >= j
+            np.add.at(band, (i[lower] - j[lower], j[lower]), (S.data[part] * scale[row] * scale[col])[lower])
+        self._factorise(band, order, scale, rcond, n <= dense_limit)
+
+    @classmethod
+    def from_band(cls, band, order, scale, rcond, dense=False):
+        """The factorisation of a scaled, renumbered S given as its lower band (overwritten).
+
+        ``band[d, c]`` = (D·S·D)[order[c + d], order[c]] (LAPACK storage, Fortran order), ``scale``
+        the diagonal of D in the original numbering.
+        """
+        self = cls.__new__(cls)
+        self._factorise(band, order, scale, rcond, dense)
+        return self
+
+    def _factorise(self, band, order, scale, rcond, dense):
+        from scipy.linalg import lapack
+        n = band.shape[1]
+        self.n, self.order, self.scale, self.dense = n, order, scale, dense
+        # one BLAS thread for large systems; a small one is factorised in less time than the switch takes
+        with _blas_on_one_thread() if (n * n if dense else band.size) > _ONE_THREAD_FROM else contextlib.nullcontext():
+            if dense:            # the same numbers as a full lower triangle (row i − j, column j → i, j)
                 full = np.zeros((n, n), order="F")
                 ii, jj = np.tril_indices(n)
-                full[ii, jj] = band[ii - jj, jj]
+                inside = ii - jj < band.shape[0]
+                full[ii[inside], jj[inside]] = band[ii[inside] - jj[inside], jj[inside]]
                 self.factor, info = lapack.dpotrf(full, lower=1, clean=1, overwrite_a=1)
                 pivots = np.diag(self.factor) ** 2
             else:
@@ -1165,6 +1111,13 @@ class _Factorisation:
         return out
 
 
+def _check_diagonal(d):
+    """Every diagonal element of S must be positive (an image unknown without observations is not)."""
+    if np.any(~(d > 0)):
+        raise DegenerateGeometryError(
+            f"image unknowns {np.flatnonzero(~(d > 0))[:10].tolist()} are not determined by any observation")
+
+
 def _pairs_by_point(point, n_points):
     """All ordered pairs (a, b) of observations that see the same point (for N₂₂ cofactors)."""
     order = np.argsort(point, kind="stable")
@@ -1178,17 +1131,59 @@ def _pairs_by_point(point, n_points):
     return a, b
 
 
+def _block_pattern(frame, point, n_frames, n_points, q, free_frames, free_points):
+    """Everything of a block step that depends only on which image sees which point (computed once).
+
+    ``slot``: for every observation its q×3 block of N₁₂ (−1: a fixed point or image, (3.5.3)),
+    numbered point by point so that ``ptr[p]:ptr[p + 1]`` are the blocks of point p; ``position``: the renumbered place of every
+    free image in the reduced system (:func:`_band_ordering` on the graph of images with a common
+    point: the given numbering or reverse Cuthill–McKee, whichever gives the narrower band);
+    ``order``: the unknowns of the renumbered system as indices of the free image unknowns;
+    ``bandwidth``: its half-bandwidth.
+    """
+    from scipy import sparse
+    coupled = np.flatnonzero(free_points[point] & free_frames[frame])
+    coupled = coupled[np.argsort(point[coupled], kind="stable")]       # the blocks of one point side by side
+    slot = np.full(frame.size, -1, np.intp)
+    slot[coupled] = np.arange(coupled.size)
+    slot_frame, slot_point = frame[coupled], point[coupled]
+    ptr = np.searchsorted(slot_point, np.arange(n_points + 1)).astype(np.intp)
+    free_idx = np.flatnonzero(free_frames)
+    rank = np.cumsum(free_frames) - 1
+    n_free = free_idx.size
+    # the graph of the free images: an edge for every pair with a common free point (and each image itself)
+    count = np.diff(ptr)
+    pairs = count * count
+    a = np.repeat(np.arange(slot_frame.size), np.repeat(count, count))       # every ordered pair of blocks
+    within = np.arange(a.size) - np.repeat(np.cumsum(pairs) - pairs, pairs)  # of one point: (ptr + u, ptr + v)
+    b = np.repeat(ptr[:-1], pairs) + within % np.repeat(count, pairs)
+    edge = np.unique(np.concatenate([rank[slot_frame[a]] * n_free + rank[slot_frame[b]],
+                                     np.arange(n_free) * (n_free + 1)]))
+    row, col = edge // n_free, edge % n_free
+    graph = sparse.csr_matrix((np.ones(edge.size), col, np.searchsorted(row, np.arange(n_free + 1))),
+                              shape=(n_free, n_free))
+    image_order, _ = _band_ordering(graph)
+    position = np.full(n_frames, -1, np.intp)
+    position[free_idx[image_order]] = np.arange(n_free)
+    width = int(np.abs(position[free_idx[row]] - position[free_idx[col]]).max(initial=0))
+    return {"frame": frame.copy(), "point": point.copy(), "slot": slot, "slot_frame": slot_frame,
+            "slot_point": slot_point, "ptr": ptr, "position": position,
+            "order": (q * image_order[:, None] + np.arange(q)).ravel(), "bandwidth": q * width + q - 1,
+            "free": (free_frames.copy(), free_points.copy())}
+
+
 def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
                  frame_prior=None, point_prior=None, free_frames=None, free_points=None,
                  covariance: bool = False, rcond: float = 1e-12,
                  dense_limit: int = 0, cache: dict | None = None) -> BlockSolution:
     """One linear step of a block adjustment by the reduction (3.5.13)–(3.5.16).
 
-    Builds N₁₁ (6×6 blocks), N₂₂ (3×3 blocks) and the block-sparse N₁₂ from the correction
-    equations, eliminates the points (3.5.16) with vectorised 3×3 block inverses, factorises the
-    reduced matrix of the image unknowns by a band Cholesky (:class:`_Factorisation`: the images
-    renumbered for a narrow band, LAPACK ``dpbtrf``) and recovers the points by back-substitution
-    δ₂ = N₂₂⁻¹(L₂ᴺ − N₁₂ᵀδ₁) (second row of (3.5.14)). ``timings`` of the result holds the seconds
+    Builds N₁₁ (q×q blocks), N₂₂ (3×3 blocks) and the q×3 blocks of N₁₂ from the correction
+    equations, eliminates the points (3.5.16) with vectorised 3×3 block inverses straight into
+    the lower band of the renumbered reduced matrix, factorises it by a band Cholesky
+    (:class:`_Factorisation`, LAPACK ``dpbtrf``) and recovers the points by back-substitution
+    δ₂ = N₂₂⁻¹(L₂ᴺ − N₁₂ᵀδ₁) (second row of (3.5.14)). The loops over observations and points
+    are compiled (:mod:`photolib._block_kernels`). ``timings`` of the result holds the seconds
     spent on the normal equations, the reduction, the factorisation and the back-substitution.
 
     Parameters
@@ -1212,43 +1207,36 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
     dense_limit : int
         Reduced systems of up to this many unknowns are factorised by the dense Cholesky
         (default 0: always the band Cholesky, which is as fast for small blocks).
+    cache : dict, optional
+        Keeps the block pattern (:func:`_block_pattern`) from one iteration to the next.
     """
-    import time
-    from scipy import sparse
+    from . import _block_kernels as kernels
 
     t0 = time.perf_counter()
     timings = {}
     m, r, q = eq.B1.shape
-    P = np.broadcast_to(np.asarray(eq.P, dtype=float), (m, r))
     free_frames = np.ones(n_frames, bool) if free_frames is None else np.asarray(free_frames, bool)
     free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
-
-    # normal-equation blocks (3.5.8) in the convention N·δ = Lᴺ of (3.5.13). The correction
-    # equations are bordered by their free terms, [B | L], so that one pass gives N and −Lᴺ.
-    # (The blocks of fixed points and images are computed too and replaced below.)
-    # The correction equations are bordered by their free terms, [B | L], so that one pass gives N
-    # and −Lᴺ. (The blocks of fixed points and images are computed too and replaced below.)
-    PB1, PB2 = P[:, :, None] * eq.B1, P[:, :, None] * eq.B2
-    NL1 = _normal_blocks(eq.frame, PB1, np.concatenate([eq.B1, eq.L[:, :, None]], axis=2), n_frames)
-    NL2 = _normal_blocks(eq.point, PB2, np.concatenate([eq.B2, eq.L[:, :, None]], axis=2), n_points)
-    N11, L1 = NL1[:, :, :q], -NL1[:, :, q]
-    N22, L2 = NL2[:, :, :3], -NL2[:, :, 3]
-    # N₁₂: one q×3 block per observation of a free point in a free image (3.5.3), sorted by image;
-    # its transpose N₂₁ sorted by point (the pattern is cached: it is the same in every iteration)
-    pattern = None if cache is None else cache.get("coupling")
-    if pattern is None or not (np.array_equal(pattern["frame"], eq.frame) and np.array_equal(pattern["point"], eq.point)):
-        coupled = np.flatnonzero(free_points[eq.point] & free_frames[eq.frame])
-        coupled = coupled[np.argsort(eq.frame[coupled], kind="stable")]
-        by_point = np.argsort(eq.point[coupled], kind="stable")
-        pattern = {"frame": eq.frame.copy(), "point": eq.point.copy(), "coupled": coupled, "by_point": by_point,
-                   "first": np.searchsorted(eq.frame[coupled], np.arange(n_frames + 1)),
-                   "first_p": np.searchsorted(eq.point[coupled][by_point], np.arange(n_points + 1))}
+    frame, point = np.asarray(eq.frame, np.intp), np.asarray(eq.point, np.intp)
+    pattern = None if cache is None else cache.get("pattern")
+    if pattern is None or not (pattern["frame"] is frame or np.array_equal(pattern["frame"], frame)) or \
+            not (pattern["point"] is point or np.array_equal(pattern["point"], point)) or \
+            not (np.array_equal(pattern["free"][0], free_frames) and np.array_equal(pattern["free"][1], free_points)):
+        pattern = _block_pattern(frame, point, n_frames, n_points, q, free_frames, free_points)
         if cache is not None:
-            cache["coupling"] = pattern
-    coupled, by_point = pattern["coupled"], pattern["by_point"]
-    pts, frm = eq.point[coupled], eq.frame[coupled]
-    W = np.einsum("kri,krj->kij", PB1, eq.B2)[coupled]                     # q×3 blocks of N₁₂
-    del PB1, PB2
+            cache["pattern"] = pattern
+    slot_frame, slot_point = pattern["slot_frame"], pattern["slot_point"]
+
+    # normal-equation blocks (3.5.8) in the convention N·δ = Lᴺ of (3.5.13): N₁₁, Lᴺ₁ per image,
+    # N₂₂, Lᴺ₂ per point, one q×3 block W of N₁₂ per observation of a free point in a free image.
+    # (The blocks of fixed points and images are computed too and replaced below.)
+    P = np.ascontiguousarray(np.broadcast_to(np.asarray(eq.P, dtype=float), (m, r)))
+    N11, L1 = np.zeros((n_frames, q, q)), np.zeros((n_frames, q))
+    N22, L2 = np.zeros((n_points, 3, 3)), np.zeros((n_points, 3))
+    W = np.zeros((slot_frame.size, q, 3))
+    kernels.normal_blocks(frame, point, np.ascontiguousarray(eq.B1, dtype=float),
+                          np.ascontiguousarray(eq.B2, dtype=float), np.ascontiguousarray(eq.L, dtype=float), P,
+                          pattern["slot"], N11, L1, N22, L2, W)
     _add_priors(frame_prior, N11, L1)
     _add_priors(point_prior, N22, L2)
     # fixed points/images: identity placeholders, their corrections are forced to zero below
@@ -1258,35 +1246,35 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
     L1[~free_frames] = 0.0
     timings["normal equations"] = time.perf_counter() - t0
 
-    # reduction (3.5.16): S = N₁₁ − N₁₂N₂₂⁻¹N₁₂ᵀ, s = L₁ᴺ − N₁₂N₂₂⁻¹L₂ᴺ. N₁₂ is block-sparse (BSR):
-    # block row = image, block column = point, one q×3 block W per observation; N₁₂N₂₂⁻¹ has the
-    # same blocks multiplied by the point's N₂₂⁻¹, and the product with N₁₂ᵀ leaves one q×q block
-    # per pair of images with a common point (fig. 3.12).
+    # reduction (3.5.16): S = N₁₁ − N₁₂N₂₂⁻¹N₁₂ᵀ, s = L₁ᴺ − N₁₂N₂₂⁻¹L₂ᴺ: one q×q block per pair of
+    # images with a common point (fig. 3.12), written into the lower band of the renumbered S
     t = time.perf_counter()
     iN22 = _invert_3x3_blocks(N22, rcond)
-    first = pattern["first"]                                               # block-row pointers
-    Y = sparse.bsr_matrix((W @ iN22[pts], pts, first), shape=(n_frames * q, n_points * 3))   # N₁₂N₂₂⁻¹
-    N21 = sparse.bsr_matrix((np.take(W.transpose(0, 2, 1), by_point, axis=0), frm[by_point], pattern["first_p"]),
-                            shape=(n_points * 3, n_frames * q))                                 # N₁₂ᵀ
-    S = _block_diagonal(N11) - Y @ N21        # (no duplicate blocks: the band layout relies on it)
-    s = L1.ravel() - Y @ L2.ravel()
-    del Y, N21
-    keep = np.repeat(free_frames, q)
-    if not keep.all():
-        S = S.tocsr()[keep][:, keep]
+    order, b = pattern["order"], pattern["bandwidth"]
+    n_unknowns = order.size
+    band = np.zeros((b + 1, n_unknowns), order="F")        # Fortran order: LAPACK works in it without a copy
+    s = L1.copy()
+    kernels.reduce_to_band(pattern["ptr"], slot_frame, W, iN22, L2, pattern["position"], N11,
+                           s, band)
     timings["reduction"] = time.perf_counter() - t
 
     t = time.perf_counter()
-    fac = _Factorisation(S, rcond, dense_limit, cache=cache)
-    del S
+    d = np.sqrt(band[0])
+    _check_diagonal(d)
+    kernels.scale_band(band, 1.0 / d)
+    scale = np.empty(n_unknowns)
+    scale[order] = 1.0 / d
+    fac = _Factorisation.from_band(band, order, scale, rcond, dense=n_unknowns <= dense_limit)
+    del band
     timings["factorisation"] = time.perf_counter() - t
 
     t = time.perf_counter()
+    keep = np.repeat(free_frames, q)
     d1 = np.zeros(n_frames * q)
-    d1[keep] = fac.solve(s[keep])
-    N21d1 = _block_sum(pts, np.einsum("kij,ki->kj", W, d1.reshape(n_frames, q)[frm]), n_points)   # N₁₂ᵀδ₁
-    d2 = np.einsum("kij,kj->ki", iN22, L2 - N21d1)                        # (3.5.14), row 2
-    d2[~free_points] = 0.0
+    d1[keep] = fac.solve(s.ravel()[keep])
+    d1 = d1.reshape(n_frames, q)
+    d2 = np.empty((n_points, 3))
+    kernels.back_substitute(slot_frame, slot_point, W, d1, iN22, L2, free_points, d2)   # (3.5.14), row 2
     timings["back-substitution"] = time.perf_counter() - t
 
     Q1 = Q2 = None
@@ -1296,6 +1284,7 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
         Q11[np.ix_(keep, keep)] = fac.inverse()
         Q1 = Q11.reshape(n_frames, q, n_frames, q)[np.arange(n_frames), :, np.arange(n_frames), :]
         # Q₂₂ per point: N₂₂⁻¹ + N₂₂⁻¹ (Σ_a,b W_aᵀ Q₁₁[c_a, c_b] W_b) N₂₂⁻¹ over observation pairs
+        pts, frm = slot_point, slot_frame
         a, b = _pairs_by_point(pts, n_points)
         T = np.zeros((n_points, 3, 3))
         Q11b = Q11.reshape(n_frames, q, n_frames, q)
@@ -1306,7 +1295,7 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
         Q2 = iN22 + iN22 @ T @ iN22
         Q2[~free_points] = 0.0
         timings["covariance"] = time.perf_counter() - t
-    return BlockSolution(d1.reshape(n_frames, q), d2, Q1, Q2, timings)
+    return BlockSolution(d1, d2, Q1, Q2, timings)
 
 
 def _add_priors(prior, N, L):
