@@ -11,6 +11,7 @@ import sympy as sp
 
 from .. import digital, scanners
 from ..camera import as_points
+from ._exact import zero
 
 
 # ---------------------------------------------------------------- §1.10 worked examples
@@ -71,7 +72,7 @@ def formula_1_10_5(inputs: dict) -> dict:
                i + (ii + sp.Rational(1, 2)) / n - sp.Rational(1, 2))
     printed = ((j - sp.Rational(1, 2)) + (jj + sp.Rational(1, 2)) / n,
                (i - sp.Rational(1, 2)) + (ii + sp.Rational(1, 2)) / n)
-    return {"printed_equals_derived": all(sp.simplify(p - d) == 0 for p, d in zip(printed, derived))}
+    return {"printed_equals_derived": all(zero(p - d) for p, d in zip(printed, derived))}
 
 
 def formula_1_10_6(inputs: dict) -> dict:
@@ -107,6 +108,10 @@ def formula_1_10_7(inputs: dict) -> dict:
     return {"printed_equals_derived": sp.expand(printed - derived) == 0}
 
 
+def _trig_simplify_zero(e) -> bool:
+    return sp.simplify(sp.expand_trig(e)) == 0
+
+
 def _similarity_symbols():
     return sp.symbols("xbar ybar a0 b0 phi k_x k_y x y", real=True)
 
@@ -132,18 +137,18 @@ def formula_1_11_6(inputs: dict) -> dict:
     fx, fy = _derived_forward()
     printed = (kx * (a1 * (xb - a0) + (yb - b0)), ky * (-a2 * (xb - a0) + (yb - b0)))
     recon = (kx * (a1 * (xb - a0) + a2 * (yb - b0)), ky * (-a2 * (xb - a0) + a1 * (yb - b0)))
-    same = lambda p, q: all(sp.simplify(sp.expand_trig(s - t)) == 0 for s, t in zip(p, q))  # noqa: E731
+    same = lambda p, q: all(zero(s - t, _trig_simplify_zero) for s, t in zip(p, q))  # noqa: E731
     exact_inv = (a0 + a1 * x / kx - a2 * y / ky, b0 + a2 * x / kx + a1 * y / ky)
-    round_trip = [sp.simplify(r.subs({xb: exact_inv[0], yb: exact_inv[1]}, simultaneous=True) - t)
+    round_trip = [zero(r.subs({xb: exact_inv[0], yb: exact_inv[1]}, simultaneous=True) - t)
                   for r, t in zip(recon, (x, y))]
     # mark 2 at distance L from mark 1 = origin, along φ: y must vanish
     L = sp.symbols("L", positive=True)
     mark2 = {xb: a0 + L * a1, yb: b0 + L * a2}
     return {"printed_equals_derived": same(printed, (fx, fy)),
             "reconstruction_equals_derived": same(recon, (fx, fy)),
-            "exact_inverse_round_trip": all(r == 0 for r in round_trip),
-            "mark2_on_x_axis": sp.simplify(recon[1].subs(mark2)) == 0,
-            "printed_mark2_on_x_axis": sp.simplify(printed[1].subs(mark2)) == 0}
+            "exact_inverse_round_trip": all(round_trip),
+            "mark2_on_x_axis": zero(recon[1].subs(mark2)),
+            "printed_mark2_on_x_axis": zero(printed[1].subs(mark2))}
 
 
 def formula_1_11_7(inputs: dict) -> dict:
@@ -158,7 +163,7 @@ def formula_1_11_7(inputs: dict) -> dict:
     a0 = ((y4 - y1) + c1 * x1 - c2 * x4) / (c1 - c2)
     b0_first = y1 + c1 * (a0 - x1)
     b0_second = y4 + c2 * (a0 - x4)
-    ok = all(sp.simplify(p - sol[s]) == 0 for p, s in ((a0, X), (b0_first, Y), (b0_second, Y)))
+    ok = all(zero(p - sol[s]) for p, s in ((a0, X), (b0_first, Y), (b0_second, Y)))
     return {"printed_equals_derived": bool(ok)}
 
 
@@ -173,11 +178,11 @@ def formula_1_11_10(inputs: dict) -> dict:
     sol = sp.solve([fx - x, fy - y], [xb, yb], dict=True)[0]
     a1, a2 = sp.cos(phi), sp.sin(phi)
     printed = (a0 + (a1 * x - a2 * y) / kx, b0 + (a2 * x + a1 * y) / ky)
-    diff = [sp.simplify(p - sol[s]) for p, s in zip(printed, (xb, yb))]
+    diff = [p - sol[s] for p, s in zip(printed, (xb, yb))]
     expected_diff = (a2 * (1 / ky - 1 / kx) * y, a2 * (1 / ky - 1 / kx) * x)
-    return {"printed_equals_derived": all(d == 0 for d in diff),
-            "equal_when_kx_eq_ky": all(sp.simplify(d.subs(ky, kx)) == 0 for d in diff),
-            "difference_is_a2_dk": all(sp.simplify(d - e) == 0 for d, e in zip(diff, expected_diff))}
+    return {"printed_equals_derived": all(zero(d) for d in diff),
+            "equal_when_kx_eq_ky": all(zero(d.subs(ky, kx)) for d in diff),
+            "difference_is_a2_dk": all(zero(d - e) for d, e in zip(diff, expected_diff))}
 
 
 def book_origin(measured):

@@ -29,9 +29,11 @@ import sympy as sp
 
 from .. import derivations, image_pair
 from ..camera import ExteriorOrientation, InteriorOrientation
+from ..lsq import redundancy_numbers
 from ..rotation import rotation_matrix
 from ..single_image import project
 from ..synthetic import stereo_pair
+from ._exact import is_zero, zero
 
 # --- symbols and helpers -------------------------------------------------------------------------
 _names = ("X1 Y1 Z1 X2 Y2 Z2 BX BY BZ by bz x1 y1 x2 y2 x01 y01 N lam MX MY MZ "
@@ -51,7 +53,8 @@ def _p(text: str):
 
 
 def _zero(expr) -> bool:
-    return sp.cancel(sp.together(sp.expand(expr))) == 0
+    exact = is_zero(expr)          # exact canonical form (rational functions); else sympy's cancel
+    return sp.cancel(sp.together(sp.expand(expr))) == 0 if exact is None else exact
 
 
 def _rotation(prefix: str = "q"):
@@ -103,11 +106,7 @@ def component_formula_degeneracy(inputs: dict) -> dict:
 
 def _coplanarity_all_parameters(order="kaw"):
     """φ of (2.7.3) with all eight parameters as a compiled model (sympy → numpy)."""
-    model = derivations.Model("coplanarity-all-8", derivations.RELATIVE_ORIENTATION_PARAMETERS,
-                              (derivations.x1, derivations.y1, derivations.f1,
-                               derivations.x2, derivations.y2, derivations.f2),
-                              (derivations.coplanarity_expression(order),))
-    return model.compile()
+    return derivations.coplanarity_all_parameters_model(order).compile()
 
 
 def synthetic_pair(n, seed=0, order="kaw"):
@@ -245,7 +244,7 @@ def blunder_localisation(n_per_zone: int, seed: int = 0, blunder_mm: float = 0.0
     ro = image_pair.relative_orientation(xy1, xy2, io, system="dependent")
     _, jac = derivations.coplanarity_model("dependent", "kaw").compile()
     J = np.asarray(jac(*ro.adjustment.x, xy1[:, 0], xy1[:, 1], io.f, xy2[:, 0], xy2[:, 1], io.f), float).T
-    r = 1.0 - np.einsum("ij,jk,ik->i", J, ro.adjustment.Q, J)         # redundancy numbers
+    r = redundancy_numbers(J, ro.adjustment.Q)                         # unit weights
     v = ro.adjustment.residuals
     w = v / (ro.adjustment.mu * np.sqrt(np.clip(r, 1e-15, None)))
     order = np.argsort(-np.abs(w))
@@ -371,7 +370,7 @@ def physiological_parallax_formula(inputs: dict) -> dict:
     gamma_F = theta(-b / 2, 0, L) - theta(b / 2, 0, L)
     a1, a2 = sp.symbols("arc1 arc2", real=True)
     printed = sp.sympify(inputs["printed"], locals={"arc1": a1, "arc2": a2}).subs({a1: arc1, a2: arc2})
-    symbolic = sp.simplify(printed - d * (gamma_A - gamma_F)) == 0
+    symbolic = zero(printed - d * (gamma_A - gamma_F))
     # horopter: the circle through (−b/2, 0), (b/2, 0), (0, L): centre (0, c), c = (L² − b²/4)/(2L)
     bb, LL, dd = 0.065, 2.0, 0.017
     c = (LL**2 - bb**2 / 4) / (2 * LL)

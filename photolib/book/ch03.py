@@ -24,6 +24,7 @@ import sympy as sp
 from ..errors import InputError
 from ..triangulation_layouts import (block_counts, bundle_equations, bundle_unknowns, correction_equation_system,
                                      images_per_point, normal_matrix_structure)
+from ._exact import zero
 from .ch03_layouts import bundle_system_counts as _system_counts, fig_3_10_block, fig_3_13_block
 
 
@@ -59,8 +60,7 @@ def fig_3_13_counts(inputs: dict) -> dict:
 # --- printed formulas ------------------------------------------------------------------------------
 def _is_zero(M) -> bool:
     """Exact zero test of a sympy matrix/expression: every entry's numerator expands to 0."""
-    entries = M if isinstance(M, sp.MatrixBase) else [M]
-    return all(sp.expand(sp.numer(sp.together(e))) == 0 for e in entries)
+    return zero(M, lambda e: sp.expand(sp.numer(sp.together(e))) == 0)
 
 
 def _ls_problem():

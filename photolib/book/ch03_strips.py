@@ -15,6 +15,7 @@ import sympy as sp
 from .. import strip_triangulation as st
 from ..synthetic import TIE
 from ..derivations import rotation_matrix_symbolic
+from ._exact import zero
 
 
 @lru_cache(maxsize=None)
@@ -114,8 +115,8 @@ def auxiliary_rotation(inputs: dict) -> dict:
     printed = sp.Matrix([[sp.cos(k), -sp.sin(k), 0], [sp.sin(k), sp.cos(k), 0], [0, 0, 1]])
     printed_T = sp.Matrix([[sp.cos(k), sp.sin(k), 0], [-sp.sin(k), sp.cos(k), 0], [0, 0, 1]])
     derived = rotation_matrix_symbolic("wak", 0, 0, k)
-    ok = sp.simplify(printed - derived) == sp.zeros(3, 3) and sp.simplify(printed_T - derived.T) == sp.zeros(3, 3)
-    ok = ok and sp.simplify(printed * printed_T - sp.eye(3)) == sp.zeros(3, 3)   # (3.2.7) undoes (3.2.6)
+    ok = zero(printed - derived) and zero(printed_T - derived.T)
+    ok = ok and zero(printed * printed_T - sp.eye(3))   # (3.2.7) undoes (3.2.6)
     return {"printed_equals_derived": bool(ok)}
 
 
@@ -129,7 +130,7 @@ def image_rotation_chain(inputs: dict) -> dict:
     # direction of the ray in the object frame: model direction A′r turned by A_M (the t > 0 factor drops out)
     derived_direction = AM * (A1 * r)
     printed = (AM * A1) * r
-    return {"printed_equals_derived": sp.simplify(derived_direction - printed) == sp.zeros(3, 1)}
+    return {"printed_equals_derived": zero(derived_direction - printed)}
 
 
 def angle_extraction(inputs: dict) -> dict:
@@ -152,8 +153,8 @@ def angle_extraction(inputs: dict) -> dict:
     # and symbolically: the expressions invert (1.3.2) for |ω|, |κ| < 90°
     w, a, k = sp.symbols("omega alpha kappa", real=True)
     R = rotation_matrix_symbolic("wak", w, a, k)
-    sym_ok = sp.simplify(-R[1, 2] / R[2, 2] - sp.tan(w)) == 0 and sp.simplify(R[0, 2] - sp.sin(a)) == 0 \
-        and sp.simplify(-R[0, 1] / R[0, 0] - sp.tan(k)) == 0
+    sym_ok = zero(-R[1, 2] / R[2, 2] - sp.tan(w)) and zero(R[0, 2] - sp.sin(a)) \
+        and zero(-R[0, 1] / R[0, 0] - sp.tan(k))
     return {"printed_equals_derived": bool(ok and sym_ok)}
 
 
@@ -162,4 +163,4 @@ def fig38_formula(inputs: dict) -> dict:
     m, k, i, l, S = sp.symbols("m k i l S", integer=True, nonnegative=True)
     derived = (3 * m + 3 * k + 2 * i + l + S).subs({i: 0, l: 0, S: 0})
     printed = sp.sympify(inputs["printed"], locals={"m": m, "k": k})
-    return {"printed_equals_derived": sp.simplify(printed - derived) == 0}
+    return {"printed_equals_derived": zero(printed - derived)}

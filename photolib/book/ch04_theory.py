@@ -37,6 +37,7 @@ import numpy as np
 import sympy as sp
 
 from ..camera import ExteriorOrientation, InteriorOrientation
+from ._exact import zero
 
 D_MATRIX = sp.diag(1, 1, -1)
 
@@ -57,9 +58,7 @@ def _ok(flag) -> dict:
 
 def _is_zero(value) -> bool:
     value = sp.Matrix(value) if isinstance(value, (list, tuple)) else value
-    if isinstance(value, sp.MatrixBase):
-        return all(sp.simplify(v) == 0 for v in value)
-    return sp.simplify(value) == 0
+    return zero(value)          # exact canonical form where it applies, else sympy's simplify
 
 
 # --- the camera of Chapter 1, exactly, at random rational values ---------------------------------

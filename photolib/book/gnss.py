@@ -13,6 +13,7 @@ import sympy as sp
 
 from .. import derivations as D
 from .. import gnss_centres as G
+from ._exact import zero
 
 _TOL = 1e-9
 
@@ -50,7 +51,7 @@ def _free(*exprs):
 
 def _cosine_check(keys) -> bool:
     printed, derived = D.printed_gnss_cosine_partials(), D.derived_gnss_cosine_partials()
-    return all(k in printed and sp.simplify(printed[k] - derived[k]) == 0 for k in keys)
+    return all(k in printed and zero(printed[k] - derived[k]) for k in keys)
 
 
 def _coef_check(printed: dict, derived: dict, keys) -> bool:
@@ -61,7 +62,7 @@ def formula_check(inputs: dict) -> dict:
     """Compare one printed formula of the paper with its sympy derivation (``inputs["item"]``)."""
     item = inputs["item"]
     if item == "rotation":                                             # (6)
-        ok = sp.simplify(D.printed_gnss_direction_cosines() - D.gnss_rotation_symbolic()) == sp.zeros(3, 3)
+        ok = zero(D.printed_gnss_direction_cosines() - D.gnss_rotation_symbolic())
     elif item == "coplanarity-expansion":                              # line 127
         X1s, Y1s, Z1s, X2s, Y2s, Z2s = sp.symbols("X1 Y1 Z1 X2 Y2 Z2")
         det = sp.Matrix([[D.B_Y, D.B_X, D.B_Z], [X1s, Y1s, Z1s], [X2s, Y2s, Z2s]]).det()
@@ -76,7 +77,7 @@ def formula_check(inputs: dict) -> dict:
     elif item.startswith("vector:"):                                   # (8)
         keys = item.split(":")[1].split(",")
         p, d = D.printed_gnss_vector_partials(), D.derived_gnss_vector_partials()
-        ok = all(sp.simplify(p[k] - d[k]) == 0 for k in keys)
+        ok = all(zero(p[k] - d[k]) for k in keys)
     elif item.startswith("coplanarity:"):                              # (5): printed structure, true A…F
         keys = item.split(":")[1].split(",")
         d1 = D.derived_gnss_vector_partials(D.x1, D.y1, D.alpha1, D.omega1, D.chi1)
@@ -103,16 +104,16 @@ def corrected_formula_check(inputs: dict) -> dict:
         d = D.derived_gnss_cosine_partials()
         a1, a2, a3, b1, b2, b3, c1, c2, c3 = D.printed_gnss_direction_cosines()
         fixes = {("a1", "omega"): a3 * sp.sin(D.chi), ("c2", "chi"): -c1}
-        ok = all(sp.simplify(v - d[k]) == 0 for k, v in fixes.items()) and len({**p, **fixes}) == 27
+        ok = all(zero(v - d[k]) for k, v in fixes.items()) and len({**p, **fixes}) == 27
     elif item == "vector":
         c, d = D.corrected_gnss_vector_partials(), D.derived_gnss_vector_partials()
-        ok = all(sp.simplify(c[k] - d[k]) == 0 for k in d)
+        ok = all(zero(c[k] - d[k]) for k in d)
     elif item == "coplanarity":
         ok = _coef_check(D.corrected_gnss_coplanarity_coefficients(), D.derived_gnss_coplanarity_coefficients(),
                          D.GNSS_COEFFICIENTS)
     elif item == "ground":
         c, d = D.corrected_gnss_ground_coefficients(), D.derived_gnss_ground_coefficients()
-        ok = all(sp.simplify(c[k] - d[k]) == 0 for k in d)
+        ok = all(zero(c[k] - d[k]) for k in d)
     else:
         raise KeyError(item)
     return {"printed_equals_derived": bool(ok)}
@@ -149,7 +150,7 @@ def _intersection_forms_equal() -> bool:
     r1 = sp.Matrix([X1s, Y1s, Z1s])
     r2 = (N * r1 - b) / Np
     sub = {X2s: r2[0], Y2s: r2[1], Z2s: r2[2]}
-    return all(sp.simplify(num.subs(sub) / den.subs(sub) - N) == 0 for num, den in forms)
+    return all(zero(num.subs(sub) / den.subs(sub) - N) for num, den in forms)
 
 
 def _initial_chi_rule() -> bool:

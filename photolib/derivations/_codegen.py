@@ -28,6 +28,7 @@ def _models():
     out += [("distortion", distortion.distortion_model()), ("angle_equality", collinearity.angle_equality_model())]
     out += [(f"coplanarity_{s}_{o}", coplanarity.coplanarity_model(s, o))
             for s in ("dependent", "independent") for o in ORDERS]
+    out += [(f"coplanarity_all_{o}", coplanarity.coplanarity_all_parameters_model(o)) for o in ORDERS]
     out += [(f"intersection_{o}", intersection.intersection_model(o)) for o in ORDERS]
     out += [(f"similarity_{o}", similarity.similarity_model(o)) for o in ORDERS]
     out += [(f"bundle_collinearity_{o}", bundle.bundle_collinearity_model(o)) for o in ORDERS]

@@ -21,7 +21,7 @@ from .rotation import rotation_matrix_symbolic
 from .symbols import alpha1, alpha2, b_y, b_z, f1, f2, kappa1, kappa2, omega1, omega2, x1, x2, y1, y2
 
 __all__ = ["RELATIVE_ORIENTATION_SYSTEMS", "RELATIVE_ORIENTATION_PARAMETERS", "coplanarity_expression",
-           "coplanarity_model", "printed_relative_orientation_partials",
+           "coplanarity_model", "coplanarity_all_parameters_model", "printed_relative_orientation_partials",
            "derived_relative_orientation_partials", "printed_ray_partials", "printed_coplanarity_partials",
            "printed_coplanarity_jacobian"]
 
@@ -118,6 +118,43 @@ def coplanarity_model(system: str = "dependent", order: str = "kaw") -> Model:
     fixed = {p: 0 for p in RELATIVE_ORIENTATION_PARAMETERS if p not in unknowns}
     phi = coplanarity_expression(order).subs(fixed)
     return Model(f"coplanarity-{system}-{order}", unknowns, (x1, y1, f1, x2, y2, f2), (phi,))
+
+
+@lru_cache(maxsize=None)
+def coplanarity_all_parameters_model(order: str = "kaw") -> Model:
+    """The coplanarity condition (2.7.3) with all eight parameters unknown (none fixed).
+
+    Its Jacobian has rank 5 at a generic pair (§2.6–§2.7: three of the eight parameters only
+    turn the model frame); the book layer counts the elements of relative orientation with it.
+
+    Parameters
+    ----------
+    order : {"kaw", "wak"}, optional
+        Rotation sequence of A'₁, A'₂.
+
+    Returns
+    -------
+    Model
+        Parameters :data:`RELATIVE_ORIENTATION_PARAMETERS`; data x₁, y₁, f₁, x₂, y₂, f₂.
+
+    Raises
+    ------
+    InputError
+        If ``order`` is unknown.
+
+    References
+    ----------
+    Chibunichev (2022), §2.6–§2.7, eq. (2.7.3).
+
+    Examples
+    --------
+    >>> m = coplanarity_all_parameters_model("kaw")
+    >>> len(m.parameters), m.name
+    (8, 'coplanarity-all-8')
+    """
+    check_order(order)
+    return Model("coplanarity-all-8", RELATIVE_ORIENTATION_PARAMETERS, (x1, y1, f1, x2, y2, f2),
+                 (coplanarity_expression(order),))
 
 
 def printed_relative_orientation_partials() -> dict:

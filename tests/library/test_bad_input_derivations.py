@@ -36,6 +36,8 @@ CASES += [
     Case(D.brown_correction_terms, ([1, 2], 0), raises=InputError, why="coordinate is a list"),
     Case(D.coplanarity_model, ("mixed",), raises=InputError, match="system", why="unknown system"),
     Case(D.coplanarity_model, ("dependent", "kwa"), raises=InputError, match="order", why="unknown order"),
+    Case(D.coplanarity_all_parameters_model, ("kwa",), raises=InputError, match="order", why="unknown order"),
+    Case(D.coplanarity_all_parameters_model, (None,), raises=InputError, why="order None"),
     Case(D.printed_coplanarity_partials, ("mixed",), raises=InputError, match="system", why="unknown system"),
     Case(D.printed_coplanarity_jacobian, ("mixed",), raises=InputError, match="system", why="unknown system"),
     Case(D.printed_ray_partials, (3,), raises=InputError, match="image", why="no image 3"),

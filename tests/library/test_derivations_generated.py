@@ -56,3 +56,14 @@ def test_gnss_coplanarity_coefficients_by_rows_equal_the_model_jacobian():
     # and exactly, for one coefficient (sympy expansion of the difference)
     a = derived["a"] - m.jacobian()[0]
     assert sp.expand(a) == 0
+
+
+def test_gnss_coplanarity_written_by_its_first_row_is_the_determinant():
+    """The GNSS coplanarity φ of (1) is written out by its first row (short printed code); it must
+    be exactly the 3×3 determinant of the base and the two image-space vectors."""
+    import sympy as sp
+    from photolib.derivations import gnss as G
+    r1 = G._gnss_image_space(G.x1, G.y1, G.alpha1, G.omega1, G.chi1)
+    r2 = G._gnss_image_space(G.x2, G.y2, G.alpha2, G.omega2, G.chi2)
+    determinant = sp.Matrix([[G.B_Y, G.B_X, G.B_Z], list(r1), list(r2)]).det(method="berkowitz")
+    assert sp.expand(G._gnss_coplanarity_expression() - determinant) == 0
