@@ -113,12 +113,31 @@ def run_photolib(blk, cams0, pts0):
     parts["other (input checks, loop)"] = round(wall - sum(parts.values()), 4)
     if kernel_load is not None:
         parts["kernel load before the timed run (not in the time)"] = round(kernel_load, 4)
-    try:
-        import threadpoolctl  # noqa: F401 — the band Cholesky then runs on one BLAS thread
-        parts["blas threads limited"] = 1.0
-    except ImportError:
-        parts["blas threads limited"] = 0.0
+    parts["blas threads in the factorisation"] = _factorisation_threads(blk)
     return res.cameras, res.points, wall, res.iterations, parts
+
+
+def _factorisation_threads(blk):
+    """BLAS threads the band Cholesky used at this block size (after the timed run, not timed).
+
+    photolib limits BLAS to one thread only when the band of S holds more than
+    ``photolib.lsq._ONE_THREAD_FROM`` numbers; below that it runs on the BLAS library's own
+    thread count. Computed from the block pattern the solver builds (same function, same inputs).
+    """
+    try:
+        from photolib import lsq
+        o, n, k = blk.observations, blk.n_images, len(blk.points)
+        free_points = np.ones(k, bool)
+        free_points[blk.control] = False
+        pattern = lsq._block_pattern(np.asarray(o.image, np.intp), np.asarray(o.point, np.intp), n, k, 6,
+                                     np.ones(n, bool), free_points)
+        stored = (pattern["bandwidth"] + 1) * pattern["order"].size
+        if stored > lsq._ONE_THREAD_FROM:
+            return 1.0
+        info = [i for i in lsq._blas_controller().info() if i.get("user_api") == "blas"]
+        return float(max((i["num_threads"] for i in info), default=-1))
+    except (ImportError, AttributeError, KeyError):          # another checkout (--before): unknown
+        return -1.0
 
 
 def run_scipy(blk, cams0, pts0):

@@ -25,7 +25,8 @@ import numpy as np
 
 from . import _bundle_generated
 
-__all__ = ["load", "collinearity", "normal_blocks", "invert_3x3", "reduce_to_band", "scale_band", "back_substitute"]
+__all__ = ["load", "collinearity", "normal_blocks", "invert_3x3", "reduce_to_band", "scale_band", "back_substitute",
+           "image_components"]
 
 _jit = numba.njit(cache=True, nogil=True)
 _point_kaw = _jit(_bundle_generated.collinearity_kaw_point)
@@ -183,13 +184,49 @@ def back_substitute(slot_frame, slot_point, W, d1, iN22, L2, free_points, d2):  
                 if free_points[p] else 0.0
 
 
+@_jit
+def image_components(image, point, n, k, labels):   # pragma: no cover (compiled)
+    """Groups of images linked through common points: ``labels[j]`` = group of image j, in place.
+
+    The connected components of the undirected graph of images and points (an edge image →
+    point for every observation), by union–find; the groups are numbered 0, 1, … in the order
+    of their lowest image index. Returns the number of groups.
+    """
+    parent = np.arange(n + k)
+    for o in range(image.shape[0]):
+        a, b = image[o], n + point[o]
+        while parent[a] != a:                    # roots, halving the paths on the way
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        while parent[b] != b:
+            parent[b] = parent[parent[b]]
+            b = parent[b]
+        if a != b:
+            if a < b:
+                parent[b] = a
+            else:
+                parent[a] = b
+    group = np.full(n + k, -1, np.intp)
+    count = 0
+    for j in range(n):
+        r = j
+        while parent[r] != r:
+            r = parent[r]
+        if group[r] < 0:
+            group[r] = count
+            count += 1
+        labels[j] = group[r]
+    return count
+
+
 def load() -> float:
-    """Load (or, on a new machine, compile) every kernel now; the seconds it took.
+    """Load (or, on a new machine, compile) every kernel now, and find the BLAS libraries; the seconds it took.
 
     Returns
     -------
     float
-        Seconds spent (numba's start-up and loading the cached machine code).
+        Seconds spent (numba's start-up, loading the cached machine code, threadpoolctl's list of
+        the BLAS libraries whose threads the factorisation limits).
 
     References
     ----------
@@ -202,6 +239,8 @@ def load() -> float:
     """
     t = time.perf_counter()
     _warm_up()
+    from .lsq import _blas_libraries           # threadpoolctl's scan of the loaded BLAS libraries (≈ 10 ms, once)
+    _blas_libraries()
     return time.perf_counter() - t
 
 
@@ -225,3 +264,4 @@ def _warm_up():
                    L1.copy(), band)
     scale_band(band, np.ones(n * q))
     back_substitute(image, point, W, np.zeros((n, q)), iN22, L2, np.ones(k, bool), np.empty((k, 3)))
+    image_components(image, point, n, k, np.empty(n, np.intp))

@@ -40,9 +40,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg  # noqa: F401 — imported here so that the solver's local imports cost nothing
+import scipy.sparse.csgraph  # noqa: F401 — (reverse Cuthill–McKee of the block pattern)
 import scipy.sparse.linalg  # noqa: F401
-from scipy import sparse
-from scipy.sparse.csgraph import connected_components
 
 from . import _bundle_generated
 from .camera import ExteriorOrientation, InteriorOrientation, correct_distortion
@@ -169,7 +168,9 @@ def _as_observations(observations):
     if image.ndim != 1 or point.shape != image.shape or xy.shape != (image.size, 2):
         raise InputError(f"observations: image {image.shape}, point {point.shape} and xy {xy.shape} do not match")
     for name, idx in (("image", image), ("point", point)):
-        if idx.size and (not np.all(np.isfinite(idx.astype(float))) or np.any(idx != np.round(idx)) or idx.min() < 0):
+        integral = np.issubdtype(idx.dtype, np.integer)        # integers: finite and whole by type
+        if idx.size and ((not integral and (not np.all(np.isfinite(idx.astype(float)))
+                                             or np.any(idx != np.round(idx)))) or idx.min() < 0):
             raise InputError(f"observations: {name} indices must be non-negative integers")
     if not np.all(np.isfinite(xy)):
         raise InputError("observations: image coordinates contain NaN or inf")
@@ -285,13 +286,16 @@ def _datum_rank(anchor_xyz, anchor_mask, angle_rows, centre, scale):
     move in the directions of the null space of these rows — its datum defect.
     """
     Xc = (np.asarray(anchor_xyz, dtype=float).reshape(-1, 3) - centre) / scale
-    one, zero = np.ones(len(Xc)), np.zeros(len(Xc))
-    D = np.stack([np.column_stack([one, zero, zero, zero, Xc[:, 2], -Xc[:, 1], Xc[:, 0]]),
-                  np.column_stack([zero, one, zero, -Xc[:, 2], zero, Xc[:, 0], Xc[:, 1]]),
-                  np.column_stack([zero, zero, one, Xc[:, 1], -Xc[:, 0], zero, Xc[:, 2]])], axis=1)
-    angles = np.hstack([np.zeros((3, 3)), np.eye(3), np.zeros((3, 1))])
+    D = np.zeros((len(Xc), 3, 7))
+    D[:, 0, 0] = D[:, 1, 1] = D[:, 2, 2] = 1.0
+    D[:, 0, 4], D[:, 0, 5], D[:, 0, 6] = Xc[:, 2], -Xc[:, 1], Xc[:, 0]
+    D[:, 1, 3], D[:, 1, 5], D[:, 1, 6] = -Xc[:, 2], Xc[:, 0], Xc[:, 1]
+    D[:, 2, 3], D[:, 2, 4], D[:, 2, 6] = Xc[:, 1], -Xc[:, 0], Xc[:, 2]
     ins = np.asarray(angle_rows, bool).reshape(-1, 3)
-    M = np.vstack([D[np.asarray(anchor_mask, bool).reshape(-1, 3)], np.broadcast_to(angles, (len(ins), 3, 7))[ins]])
+    M = D[np.asarray(anchor_mask, bool).reshape(-1, 3)]
+    if ins.size:
+        angles = np.hstack([np.zeros((3, 3)), np.eye(3), np.zeros((3, 1))])
+        M = np.vstack([M, np.broadcast_to(angles, (len(ins), 3, 7))[ins]])
     if M.size == 0:
         return 0
     sv = np.linalg.svd(M, compute_uv=False)
@@ -402,15 +406,11 @@ def _prepare_block(observations, cameras0, points0, io, control, control_sigma, 
     if weak.size:
         raise InputError(f"images {weak[:10].tolist()} have fewer than three measured points")
 
-    # connectivity: images linked through common points
-    # (the graph of images and points, an edge image → n + point for every observation, undirected)
-    by_image = np.argsort(image, kind="stable")
-    edges = sparse.csr_matrix((np.ones(image.size), n + point[by_image],
-                               np.concatenate([np.searchsorted(image[by_image], np.arange(n + 1)),
-                                               np.full(k, image.size)])), shape=(n + k, n + k))
-    _, labels = connected_components(edges, directed=False)
-    _, labels = np.unique(labels[:n], return_inverse=True)
-    n_parts = int(labels.max()) + 1
+    # connectivity: images linked through common points (the connected components of the graph of
+    # images and points, an edge image → point for every observation; union–find, compiled)
+    from . import _block_kernels
+    labels = np.empty(n, np.intp)
+    n_parts = int(_block_kernels.image_components(image, point, n, k, labels))
     if n_parts > 1:
         sizes = np.bincount(labels)
         raise DegenerateGeometryError(
@@ -418,16 +418,15 @@ def _prepare_block(observations, cameras0, points0, io, control, control_sigma, 
             f"(sizes {sizes.tolist()}); connect them with tie points or adjust them separately")
 
     # datum: the control must fix the 7 parameters of a spatial similarity
-    anchors, masks, angle_rows = [], [], []
-    if ctrl_idx.size:
-        anchors += list(pts[ctrl_idx])
-        masks += list(np.ones((ctrl_idx.size, 3), bool) if control_sigma is None else np.isfinite(ctrl_xyz))
+    anchors = pts[ctrl_idx]
+    masks = np.ones((ctrl_idx.size, 3), bool) if control_sigma is None else np.isfinite(ctrl_xyz)
+    angle_rows = np.zeros((0, 3), bool)
     if frame_obs is not None:
         has = frame_weights[:, :3] > 0
-        anchors += list(np.where(has, frame_values[:, :3], 0.0)[has.any(1)])
-        masks += list(has[has.any(1)])
+        anchors = np.concatenate([anchors, np.where(has, frame_values[:, :3], 0.0)[has.any(1)]])
+        masks = np.concatenate([masks, has[has.any(1)]])
         ang = frame_weights[:, 3:] > 0
-        angle_rows += list(ang[ang.any(1)])
+        angle_rows = ang[ang.any(1)]
     centre = cams[:, :3].mean(axis=0)
     scale = max(float(np.ptp(cams[:, :2], axis=0).max()), float(np.abs(cams[:, 2] - pts[:, 2].mean()).mean()), 1.0)
     rank = _datum_rank(anchors, masks, angle_rows, centre, scale)
@@ -527,9 +526,15 @@ def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, 
     free_points, point_obs, frame_obs = b.free_points, b.point_obs, b.frame_obs
 
     use_cov = (6 * n <= 3000) if covariance == "auto" else bool(covariance)
-    _zstar_check(cams, pts, image, point, order)           # bad start values: PointBehindCameraError, as such
+    # the correction equations at the start values: points behind an image there (bad start values)
+    # raise PointBehindCameraError as such; the iteration's first step reuses them
+    start = [bundle_correction_equations(image, point, xy, cams, pts, io, order)]
 
     def linearize(frames, points):
+        if start:
+            eq = start.pop()
+            if np.array_equal(frames, cams) and np.array_equal(points, pts):
+                return eq
         return bundle_correction_equations(image, point, xy, frames, points, io, order)
 
     try:

@@ -997,18 +997,39 @@ def _band_ordering(S):
     return (q * order[:, None] + np.arange(q)).ravel(), q * width + q - 1
 
 
+@contextlib.contextmanager
 def _blas_on_one_thread():
     """A context in which BLAS and LAPACK run on one thread (threadpoolctl, a runtime dependency).
 
     The band Cholesky of :class:`_Factorisation` works on panels a few hundred unknowns wide: a
     multithreaded BLAS gains nothing there, and when other processes hold the cores its threads
     wait for each other, which made the factorisation up to 40× slower on a busy machine
-    (benchmarks/README.md).
+    (benchmarks/README.md; at 100 images 0.24 s on two threads against 0.002 s on one). The
+    switch sets the thread count of every BLAS library threadpoolctl found (once) and restores
+    it on exit — what ``ThreadpoolController.limit`` does, at a few microseconds instead of ≈ 17.
     """
-    return _blas_controller().limit(limits=1, user_api="blas")
+    libraries = _blas_libraries()
+    before = [lib.num_threads for lib in libraries]
+    for lib in libraries:
+        lib.set_num_threads(1)
+    try:
+        yield
+    finally:
+        for lib, n in zip(libraries, before):
+            lib.set_num_threads(n)
 
 
-_ONE_THREAD_FROM = 200_000      # stored numbers of S from which the factorisation runs on one BLAS thread
+# stored numbers of S from which the factorisation runs on one BLAS thread. Below it (a block of
+# about 10 images) the factorisation takes a few microseconds, less than the switch (20–70 µs in a
+# fresh process); above it two threads made the factorisation up to 100× slower under load
+# (100 images: 0.24 s against 0.002 s), so the former limit of 200 000 was far too high.
+_ONE_THREAD_FROM = 10_000
+
+
+@functools.lru_cache(maxsize=None)
+def _blas_libraries():
+    """threadpoolctl's controllers of the BLAS libraries (found once)."""
+    return tuple(lib for lib in _blas_controller().lib_controllers if lib.user_api == "blas")
 
 
 @functools.lru_cache(maxsize=None)
@@ -1069,7 +1090,7 @@ class _Factorisation:
         from scipy.linalg import lapack
         n = band.shape[1]
         self.n, self.order, self.scale, self.dense = n, order, scale, dense
-        # one BLAS thread for large systems; a small one is factorised in less time than the switch takes
+        # one BLAS thread for every system larger than _ONE_THREAD_FROM stored numbers
         with _blas_on_one_thread() if (n * n if dense else band.size) > _ONE_THREAD_FROM else contextlib.nullcontext():
             if dense:            # the same numbers as a full lower triangle (row i − j, column j → i, j)
                 full = np.zeros((n, n), order="F")
@@ -1091,11 +1112,18 @@ class _Factorisation:
 
     def solve(self, rhs):
         """S⁻¹·rhs for a vector or a matrix of right-hand sides."""
-        from scipy.linalg import cho_solve, cho_solve_banded
+        from scipy.linalg import lapack
         scale = self.scale if rhs.ndim == 1 else self.scale[:, None]
         b = (rhs * scale)[self.order]
-        y = cho_solve((self.factor, True), b, check_finite=False) if self.dense else \
-            cho_solve_banded((self.factor, True), b, check_finite=False)
+        # LAPACK's triangular solves directly (what cho_solve / cho_solve_banded call, without their
+        # per-call argument handling): dpotrs / dpbtrs with the lower factor
+        if b.size == 0:
+            y, info = b.copy(), 0
+        else:
+            y, info = lapack.dpotrs(self.factor, b, lower=1) if self.dense else \
+                lapack.dpbtrs(self.factor, b, lower=1)
+        if info != 0:
+            raise ValueError(f"illegal value in argument {-info} of the LAPACK triangular solve")
         x = np.empty_like(y)
         x[self.order] = y
         return x * scale
@@ -1113,7 +1141,7 @@ class _Factorisation:
 
 def _check_diagonal(d):
     """Every diagonal element of S must be positive (an image unknown without observations is not)."""
-    if np.any(~(d > 0)):
+    if not (d > 0).all():
         raise DegenerateGeometryError(
             f"image unknowns {np.flatnonzero(~(d > 0))[:10].tolist()} are not determined by any observation")
 
@@ -1142,6 +1170,7 @@ def _block_pattern(frame, point, n_frames, n_points, q, free_frames, free_points
     ``bandwidth``: its half-bandwidth.
     """
     from scipy import sparse
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
     coupled = np.flatnonzero(free_points[point] & free_frames[frame])
     coupled = coupled[np.argsort(point[coupled], kind="stable")]       # the blocks of one point side by side
     slot = np.full(frame.size, -1, np.intp)
@@ -1160,16 +1189,26 @@ def _block_pattern(frame, point, n_frames, n_points, q, free_frames, free_points
     edge = np.unique(np.concatenate([rank[slot_frame[a]] * n_free + rank[slot_frame[b]],
                                      np.arange(n_free) * (n_free + 1)]))
     row, col = edge // n_free, edge % n_free
+    # the choice of _band_ordering (given numbering or reverse Cuthill–McKee, the narrower band),
+    # made on the edge list at hand instead of a second sparse copy of the graph
     graph = sparse.csr_matrix((np.ones(edge.size), col, np.searchsorted(row, np.arange(n_free + 1))),
                               shape=(n_free, n_free))
-    image_order, _ = _band_ordering(graph)
+    rcm = reverse_cuthill_mckee(graph, symmetric_mode=True)
+    rcm_position = np.empty(rcm.size, np.intp)
+    rcm_position[rcm] = np.arange(rcm.size)
+    natural = int(np.abs(row - col).max(initial=0))
+    reordered = int(np.abs(rcm_position[row] - rcm_position[col]).max(initial=0))
+    image_order = rcm if reordered < natural else np.arange(n_free)
     position = np.full(n_frames, -1, np.intp)
     position[free_idx[image_order]] = np.arange(n_free)
     width = int(np.abs(position[free_idx[row]] - position[free_idx[col]]).max(initial=0))
     return {"frame": frame.copy(), "point": point.copy(), "slot": slot, "slot_frame": slot_frame,
             "slot_point": slot_point, "ptr": ptr, "position": position,
             "order": (q * image_order[:, None] + np.arange(q)).ravel(), "bandwidth": q * width + q - 1,
-            "free": (free_frames.copy(), free_points.copy())}
+            "free": (free_frames.copy(), free_points.copy()),
+            # the same in every iteration: fixed points / images and the free image unknowns
+            "fixed_points": np.flatnonzero(~free_points), "fixed_frames": np.flatnonzero(~free_frames),
+            "keep": np.repeat(free_frames, q)}
 
 
 def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
@@ -1230,7 +1269,8 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
     # normal-equation blocks (3.5.8) in the convention N·δ = Lᴺ of (3.5.13): N₁₁, Lᴺ₁ per image,
     # N₂₂, Lᴺ₂ per point, one q×3 block W of N₁₂ per observation of a free point in a free image.
     # (The blocks of fixed points and images are computed too and replaced below.)
-    P = np.ascontiguousarray(np.broadcast_to(np.asarray(eq.P, dtype=float), (m, r)))
+    P = np.asarray(eq.P, dtype=float)
+    P = np.full((m, r), P) if P.ndim == 0 else np.ascontiguousarray(np.broadcast_to(P, (m, r)))
     N11, L1 = np.zeros((n_frames, q, q)), np.zeros((n_frames, q))
     N22, L2 = np.zeros((n_points, 3, 3)), np.zeros((n_points, 3))
     W = np.zeros((slot_frame.size, q, 3))
@@ -1240,10 +1280,13 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
     _add_priors(frame_prior, N11, L1)
     _add_priors(point_prior, N22, L2)
     # fixed points/images: identity placeholders, their corrections are forced to zero below
-    N22[~free_points] = np.eye(3)
-    L2[~free_points] = 0.0
-    N11[~free_frames] = np.eye(q)
-    L1[~free_frames] = 0.0
+    fixed_points, fixed_frames = pattern["fixed_points"], pattern["fixed_frames"]
+    if fixed_points.size:
+        N22[fixed_points] = np.eye(3)
+        L2[fixed_points] = 0.0
+    if fixed_frames.size:
+        N11[fixed_frames] = np.eye(q)
+        L1[fixed_frames] = 0.0
     timings["normal equations"] = time.perf_counter() - t0
 
     # reduction (3.5.16): S = N₁₁ − N₁₂N₂₂⁻¹N₁₂ᵀ, s = L₁ᴺ − N₁₂N₂₂⁻¹L₂ᴺ: one q×q block per pair of
@@ -1269,7 +1312,7 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
     timings["factorisation"] = time.perf_counter() - t
 
     t = time.perf_counter()
-    keep = np.repeat(free_frames, q)
+    keep = pattern["keep"]
     d1 = np.zeros(n_frames * q)
     d1[keep] = fac.solve(s.ravel()[keep])
     d1 = d1.reshape(n_frames, q)
@@ -1464,7 +1507,7 @@ class _BlockSolver:
 
     @staticmethod
     def vtpv(eq, pr):
-        return float(np.sum(np.broadcast_to(eq.P, eq.L.shape) * eq.L ** 2)) + \
+        return float(np.sum(eq.P * eq.L ** 2 if np.ndim(eq.P) == 0 else np.broadcast_to(eq.P, eq.L.shape) * eq.L ** 2)) + \
             sum(float(np.sum(p[1] * p[0] ** 2)) for p in pr if p is not None)
 
     def solve(self, eq, pr, covariance):
