@@ -44,7 +44,7 @@ import scipy.sparse.csgraph  # noqa: F401 — (reverse Cuthill–McKee of the bl
 import scipy.sparse.linalg  # noqa: F401
 
 from . import _bundle_generated
-from .camera import ExteriorOrientation, InteriorOrientation, correct_distortion
+from .camera import ExteriorOrientation, ExteriorOrientations, InteriorOrientation, correct_distortion
 from .errors import ConvergenceError, DegenerateGeometryError, InputError, PointBehindCameraError
 from .lsq import (BlockCorrectionEquations, GlobalBlockCorrectionEquations, block_equations_dense, block_gauss_newton,
                   global_block_equations_dense)
@@ -107,6 +107,8 @@ class BundleResult:
     >>> res = bundle_adjustment(blk.observations, cams0, pts0, blk.io, control=control, order=blk.order)
     >>> float(np.abs(res.cameras - blk.cameras).max()) < 1e-6      # noise-free block: the truth
     True
+    >>> len(res.orientations), res.orientations.order == blk.order
+    (8, True)
     >>> print(res.summary().splitlines()[0][:52])
     Bundle adjustment (§3.5): 8 images, 37 points, 4 ite
     """
@@ -129,6 +131,11 @@ class BundleResult:
     def eo(self, i: int) -> ExteriorOrientation:
         """Exterior orientation of image ``i``."""
         return ExteriorOrientation.from_vector(self.cameras[i], order=self.order)
+
+    @property
+    def orientations(self) -> ExteriorOrientations:
+        """All adjusted exterior orientations as one vectorised collection carrying the order."""
+        return ExteriorOrientations.from_vectors(self.cameras, order=self.order)
 
     @property
     def rms_image_residual(self) -> float:

@@ -549,6 +549,12 @@ class Block:
         return self.point_labels[hit[0]]
 
     # --- simulation helpers ----------------------------------------------------------------------
+    @property
+    def orientations(self):
+        """The true exterior orientations as one vectorised collection carrying the order."""
+        from .camera import ExteriorOrientations
+        return ExteriorOrientations.from_vectors(self.cameras, order=self.order)
+
     def control_values(self) -> dict:
         """{point index: measured (X, Y, Z)}: the truth (fixed control) or truth + seeded noise."""
         if self.control_sigma is None:
