@@ -38,10 +38,14 @@ def _angle_terms(expr):
     return per_angle
 
 
-def is_zero(expr):
-    """True/False if ``expr`` (an expression or a matrix) is/is not identically 0; None if undecided."""
+def is_zero(expr, size=600):
+    """True/False if ``expr`` (an expression or a matrix) is/is not identically 0; None if undecided.
+
+    ``size``: the largest number of terms (numerator + denominator) an intermediate fraction may have
+    before the expression is left undecided.
+    """
     if isinstance(expr, sp.MatrixBase):
-        results = [is_zero(e) for e in expr]
+        results = [is_zero(e, size) for e in expr]
         if any(r is False for r in results):
             return False
         return None if any(r is None for r in results) else True
@@ -88,7 +92,7 @@ def is_zero(expr):
         memo = _MEMO.setdefault(tuple(gens), {})
     memo.update(zip(gens, ((g, R.one) for g in elements)))
     try:
-        numer, denom = _fraction(expr, R, memo)
+        numer, denom = _fraction(expr, R, memo, size)
     except _Undecided:      # not a rational function of these generators: leave it to the caller
         return None
     if circles:
@@ -112,34 +116,34 @@ class _Undecided(Exception):
 _MEMO: dict = {}      # generators -> {sub-expression: (p, q)}: shared sub-trees are converted once
 
 
-def _fraction(expr, R, memo):
+def _fraction(expr, R, memo, size=600):
     """(p, q) polynomials of ``R`` with expr = p/q, built bottom-up (q never 0)."""
     hit = memo.get(expr)
     if hit is None:
-        hit = memo[expr] = _fraction_new(expr, R, memo)
+        hit = memo[expr] = _fraction_new(expr, R, memo, size)
     return hit
 
 
-def _fraction_new(expr, R, gens):
+def _fraction_new(expr, R, gens, size):
     if expr.is_Rational:
         return R(expr), R.one
     if expr.is_Add:
         p, q = R.zero, R.one
         for arg in expr.args:
-            a, b = _fraction(arg, R, gens)
+            a, b = _fraction(arg, R, gens, size)
             if b == q:
                 p = p + a
             else:
-                p, q = _reduced(p * b + a * q, q * b)
+                p, q = _reduced(p * b + a * q, q * b, size)
         return p, q
     if expr.is_Mul:
         p, q = R.one, R.one
         for arg in expr.args:
-            a, b = _fraction(arg, R, gens)
-            p, q = _reduced(p * a, q * b)
+            a, b = _fraction(arg, R, gens, size)
+            p, q = _reduced(p * a, q * b, size)
         return p, q
     if expr.is_Pow and expr.exp.is_Integer:
-        a, b = _fraction(expr.base, R, gens)
+        a, b = _fraction(expr.base, R, gens, size)
         e = int(expr.exp)
         if e < 0:
             if not a:
@@ -149,7 +153,7 @@ def _fraction_new(expr, R, gens):
     raise _Undecided
 
 
-def zero(expr, fallback=None) -> bool:
+def zero(expr, fallback=None, size=600) -> bool:
     """:func:`is_zero` where it decides, else ``fallback(entry)`` (default: ``simplify(entry) == 0``).
 
     A matrix is zero when every entry is; each undecided entry goes to the fallback alone.
@@ -158,7 +162,7 @@ def zero(expr, fallback=None) -> bool:
         fallback = _simplify_zero
     entries = list(expr) if isinstance(expr, (sp.MatrixBase, list, tuple)) else [expr]
     for e in entries:
-        exact = is_zero(e)
+        exact = is_zero(e, size)
         if not (fallback(e) if exact is None else exact):
             return False
     return True
@@ -166,3 +170,12 @@ def zero(expr, fallback=None) -> bool:
 
 def _simplify_zero(e) -> bool:
     return sp.simplify(e) == 0
+
+
+def lambdify(args, expr, modules=None):
+    """``sympy.lambdify`` without the generated docstring: the same code and numbers, but the
+    docstring prints the whole expression, which for the large partials costs as much as the code."""
+    try:
+        return sp.lambdify(args, expr, modules, docstring_limit=0)
+    except TypeError:       # sympy < 1.13 has no docstring_limit
+        return sp.lambdify(args, expr, modules)

@@ -22,6 +22,7 @@ from ..errors import ConvergenceError
 from ..lsq import Adjustment, gauss_newton
 from ..resection import (DEFAULT_TOL, EO_NAMES, angle_equation_count, _collinearity_linearizer,
                          independent_angle_equations, resection_by_angles, space_resection)
+from ._exact import lambdify
 
 CORRELATION_NAMES = tuple((i, j, f"r_{EO_NAMES[i]}_{EO_NAMES[j]}") for i in range(6) for j in range(i + 1, 6))
 
@@ -163,7 +164,7 @@ def angle_partial_check(inputs: dict) -> dict:
     j = ("a1", "b1", "c1").index(name)
     S, A, B = _angle_args(20, seed=19)
     d = derivations
-    printed = sp.lambdify((d.Xs, d.Ys, d.Zs, d.XA, d.YA, d.ZA, d.XB, d.YB, d.ZB),
+    printed = lambdify((d.Xs, d.Ys, d.Zs, d.XA, d.YA, d.ZA, d.XB, d.YB, d.ZB),
                           d.printed_angle_equality_partials()[name], "numpy")(*S.T, *A.T, *B.T)
     zeros = np.zeros(len(S))
     derived = d.angle_equality_model().compile()[1](*S.T, *A.T, *B.T, zeros, zeros, zeros, zeros, 100.0, 0.0, 0.0)[j]

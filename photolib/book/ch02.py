@@ -30,6 +30,7 @@ from .. import derivations
 from ..camera import ExteriorOrientation, InteriorOrientation
 from ..image_pair import (RelativeOrientation, SimilarityTransform, StereoModel, absolute_orientation, build_model,
                           image_orientation_from_model, relative_orientation)
+from ._exact import lambdify
 
 RO_KEYS = ("alpha1", "kappa1", "omega2", "alpha2", "kappa2")
 AO_KEYS = ("X0", "Y0", "Z0", "omegaM", "alphaM", "kappaM", "t")
@@ -243,8 +244,8 @@ def ro_partial_check(inputs: dict) -> dict:
     symbols = sorted((sp.sympify(printed) - derived).free_symbols | derived.free_symbols, key=str)
     vals = _random_values(symbols, 20, 28, {"f_1": (50, 200), "f_2": (50, 200), "x_1": (-100, 100),
                                             "y_1": (-100, 100), "x_2": (-100, 100), "y_2": (-100, 100)})
-    p = sp.lambdify(symbols, printed, "numpy")(*vals.values()) if symbols else float(printed)
-    q = sp.lambdify(symbols, derived, "numpy")(*vals.values())
+    p = lambdify(symbols, printed, "numpy")(*vals.values()) if symbols else float(printed)
+    q = lambdify(symbols, derived, "numpy")(*vals.values())
     p, q = np.broadcast_arrays(np.asarray(p, float), np.asarray(q, float))
     return {"printed_equals_derived": bool(np.allclose(p, q, rtol=1e-10, atol=1e-9))}
 
@@ -262,8 +263,8 @@ def similarity_partial_check(inputs: dict) -> dict:
                                              "Z_M": (-250, -150)})
     ok = True
     for name in inputs["coefficients"]:
-        p = np.broadcast_to(sp.lambdify(symbols, printed[name], "numpy")(*vals.values()), (20,))
-        q = np.broadcast_to(sp.lambdify(symbols, derived[name], "numpy")(*vals.values()), (20,))
+        p = np.broadcast_to(lambdify(symbols, printed[name], "numpy")(*vals.values()), (20,))
+        q = np.broadcast_to(lambdify(symbols, derived[name], "numpy")(*vals.values()), (20,))
         ok = ok and bool(np.allclose(p, q, rtol=1e-10, atol=1e-9))
     return {"printed_equals_derived": ok}
 

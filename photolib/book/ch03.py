@@ -58,9 +58,12 @@ def fig_3_13_counts(inputs: dict) -> dict:
 
 
 # --- printed formulas ------------------------------------------------------------------------------
-def _is_zero(M) -> bool:
-    """Exact zero test of a sympy matrix/expression: every entry's numerator expands to 0."""
-    return zero(M, lambda e: sp.expand(sp.numer(sp.together(e))) == 0)
+def _is_zero(M, size=600) -> bool:
+    """Exact zero test of a sympy matrix/expression: every entry's numerator expands to 0.
+
+    ``size``: term limit of the exact test's intermediate fractions (beyond it: expand the numerator).
+    """
+    return zero(M, lambda e: sp.expand(sp.numer(sp.together(e))) == 0, size=size)
 
 
 def _ls_problem():
@@ -88,12 +91,12 @@ def normal_equation_check(inputs: dict) -> dict:
     if form == "3.5.8":
         ok = _is_zero(grad / 2 - (N * d + LN))
     elif form == "3.5.9":
-        ok = _is_zero(-N.inv() * LN - best)
+        ok = _is_zero(-N.inv() * LN - best, size=4000)
     elif form == "3.5.10":
-        ok = _is_zero(N.inv() * LN - best)
+        ok = _is_zero(N.inv() * LN - best, size=4000)
     else:
         raise InputError(f"unknown form {form!r}")
-    if not _is_zero(grad.subs(dict(zip(d, best)))):      # guard: it is the stationary point
+    if not _is_zero(grad.subs(dict(zip(d, best))), size=4000):      # guard: it is the stationary point
         raise AssertionError("the reference minimiser does not zero the gradient")
     return {"printed_equals_derived": bool(ok)}
 

@@ -13,7 +13,7 @@ import sympy as sp
 
 from .. import derivations as D
 from .. import gnss_centres as G
-from ._exact import zero
+from ._exact import lambdify, zero
 
 _TOL = 1e-9
 
@@ -22,8 +22,8 @@ _TOL = 1e-9
 def _numeric_equal(e1, e2, symbols, seed=0, n=40) -> bool:
     """Evaluate two expressions at ``n`` random points (angles ±0.5 rad, coordinates ±100) and compare."""
     rng = np.random.default_rng(seed)
-    f1 = sp.lambdify(symbols, e1, "numpy")
-    f2 = sp.lambdify(symbols, e2, "numpy")
+    f1 = lambdify(symbols, e1, "numpy")
+    f2 = lambdify(symbols, e2, "numpy")
     vals = []
     for s in symbols:
         name = str(s)

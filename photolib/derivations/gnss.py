@@ -359,7 +359,13 @@ def derived_gnss_vector_partials(xx=x, yy=y, a=alpha, w=omega, k=chi) -> dict:
     >>> derived_gnss_vector_partials()["Y_alpha"]
     0
     """
-    xx, yy, a, w, k = _sym(xx, yy, a, w, k)
+    return dict(_derived_gnss_vector_partials(*_sym(xx, yy, a, w, k)))
+
+
+@lru_cache(maxsize=64)
+def _derived_gnss_vector_partials(xx, yy, a, w, k) -> dict:
+    """The partials of :func:`derived_gnss_vector_partials`, derived once per argument tuple
+    (sympy expressions are immutable; callers get a copy of the dict)."""
     r = _gnss_image_space(xx, yy, a, w, k)
     keys = {"X_alpha": (0, a), "A": (0, w), "C": (0, k), "Y_alpha": (1, a), "D": (1, w), "E": (1, k),
             "Z_alpha": (2, a), "B": (2, w), "F": (2, k)}
