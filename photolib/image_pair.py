@@ -920,20 +920,23 @@ class RelativeOrientation:
 
 
 def _first_row_rotation(v, order):
-    """(α, κ) with rotation_matrix(0, α, κ, order)[0] = v (unit): the start of (2.7.4) from a base."""
-    from scipy.optimize import least_squares
+    """(α, κ) with rotation_matrix(0, α, κ, order)[0] = v (unit): the start of (2.7.4) from a base.
 
-    best = None
-    for a0 in (0.0, np.pi / 2, -np.pi / 2):
-        for k0 in (0.0, np.pi / 2, np.pi, -np.pi / 2):
-            sol = least_squares(lambda p: rotation_matrix(0.0, *np.angle(np.exp(1j * p)), order)[0] - v, [a0, k0],
-                                xtol=1e-15, ftol=1e-15, gtol=1e-15)
-            if best is None or sol.cost < best.cost:
-                best = sol
-    if best.cost > 1e-20:
+    With ω = 0 the first row is (cos α cos κ, −sin κ, sin α cos κ) for ``"kaw"`` and
+    (cos α cos κ, −cos α sin κ, sin α) for ``"wak"`` (sympy, :func:`photolib.derivations.
+    rotation_matrix_symbolic`); of the two solutions the one with cos κ ≥ 0 (kaw) or cos α ≥ 0
+    (wak) is returned. When the free angle is undefined (v along the axis of the other) it is 0.
+    """
+    x, y, z = np.asarray(v, dtype=float) / np.linalg.norm(v)
+    if order == "kaw":
+        kappa = np.arctan2(-y, np.hypot(x, z))
+        alpha = np.arctan2(z, x) if np.hypot(x, z) > 1e-15 else 0.0
+    else:
+        alpha = np.arctan2(z, np.hypot(x, y))
+        kappa = np.arctan2(-y, x) if np.hypot(x, y) > 1e-15 else 0.0
+    if not np.allclose(rotation_matrix(0.0, alpha, kappa, order)[0], (x, y, z), atol=1e-12):
         raise DegenerateGeometryError("the base direction cannot be reached with ω′₁ = 0 in this rotation order")
-    a, k = np.angle(np.exp(1j * best.x))
-    return float(a), float(k)
+    return float(alpha), float(kappa)
 
 
 def _relative_from_rotation(A2, base, xy1, xy2, io1, io2, system, order, in_front=None):
