@@ -7,13 +7,17 @@ a check that the printed form disagrees with the derivation marks an erratum.
 
 Rotations: the identities of §1.4 and §1.7 hold for every orthogonal A. They are checked with
 A = Q(a, b, c, d)/m, the quaternion matrix (1.3.7) divided by its scale: a rational
-parametrisation of all rotations, so ``sympy.cancel`` decides the identities exactly.
+parametrisation of all rotations, so the identities are rational-function identities, decided
+exactly in sympy's fraction field ℚ(a, b, c, d, …) (every element kept in lowest terms, so a
+difference is the zero of the field iff it vanishes identically — the test ``sympy.cancel`` makes,
+without building the nested sympy expression first).
 """
 
 from __future__ import annotations
 
 import numpy as np
 import sympy as sp
+from sympy.polys.fields import field
 
 from .. import camera, single_image
 from ._exact import zero
@@ -29,6 +33,30 @@ def _quaternion_A():
     from ..derivations import quaternion_rotation_symbolic
     a, b, c, d = _qa, _qb, _qc, _qd
     return quaternion_rotation_symbolic(a, b, c, d), a**2 + b**2 + c**2 + d**2
+
+
+def _fraction_field(symbols):
+    """{symbol: generator} of the fraction field ℚ(symbols) (elements are kept in lowest terms)."""
+    _, *gens = field(list(symbols), sp.QQ)
+    return dict(zip(symbols, gens))
+
+
+def _quaternion_A_field(v):
+    """A = Q/m of :func:`_quaternion_A` with entries in the fraction field of ``v``."""
+    Q, m = _quaternion_A()
+    field_of = next(iter(v.values())).field
+    mv = field_of.from_expr(m)
+    return [[field_of.from_expr(Q[i, j]) / mv for j in range(3)] for i in range(3)]
+
+
+class _FieldMatrix:
+    """A 3×3 table of field elements indexed like a sympy Matrix (``A[i, j]``)."""
+
+    def __init__(self, rows):
+        self._rows = rows
+
+    def __getitem__(self, ij):
+        return self._rows[ij[0]][ij[1]]
 
 
 def _cancel_zero(expr) -> bool:
@@ -84,30 +112,35 @@ def ray_vector(inputs: dict) -> dict:
 
 
 # --- §1.4 ----------------------------------------------------------------------------------------
-def _collinearity_printed(A):
-    """(1.4.12) as printed: x, y from object coordinates."""
-    dX, dY, dZ = X - Xs, Y - Ys, Z - Zs
+def _collinearity_printed(A, v=None):
+    """(1.4.12) as printed: x, y from object coordinates (``v``: symbol -> value, e.g. field elements)."""
+    v = v or {}
+    X_, Xs_, Y_, Ys_, Z_, Zs_, f_, x0_, y0_ = (v.get(s, s) for s in (X, Xs, Y, Ys, Z, Zs, f, x0, y0))
+    dX, dY, dZ = X_ - Xs_, Y_ - Ys_, Z_ - Zs_
     den = A[0, 2] * dX + A[1, 2] * dY + A[2, 2] * dZ
-    return (x0 - f * (A[0, 0] * dX + A[1, 0] * dY + A[2, 0] * dZ) / den,
-            y0 - f * (A[0, 1] * dX + A[1, 1] * dY + A[2, 1] * dZ) / den)
+    return (x0_ - f_ * (A[0, 0] * dX + A[1, 0] * dY + A[2, 0] * dZ) / den,
+            y0_ - f_ * (A[0, 1] * dX + A[1, 1] * dY + A[2, 1] * dZ) / den)
 
 
-def _monoplot_printed(A, xi, yi, Zp):
-    """(1.4.7) as printed: X, Y from image coordinates and the height Z."""
-    u, v = xi - x0, yi - y0
-    den = A[2, 0] * u + A[2, 1] * v - A[2, 2] * f
-    return (Xs + (Zp - Zs) * (A[0, 0] * u + A[0, 1] * v - A[0, 2] * f) / den,
-            Ys + (Zp - Zs) * (A[1, 0] * u + A[1, 1] * v - A[1, 2] * f) / den)
+def _monoplot_printed(A, xi, yi, Zp, v=None):
+    """(1.4.7) as printed: X, Y from image coordinates and the height Z (``v`` as above)."""
+    v = v or {}
+    Xs_, Ys_, Zs_, f_, x0_, y0_ = (v.get(s, s) for s in (Xs, Ys, Zs, f, x0, y0))
+    u, w = xi - x0_, yi - y0_
+    den = A[2, 0] * u + A[2, 1] * w - A[2, 2] * f_
+    return (Xs_ + (Zp - Zs_) * (A[0, 0] * u + A[0, 1] * w - A[0, 2] * f_) / den,
+            Ys_ + (Zp - Zs_) * (A[1, 0] * u + A[1, 1] * w - A[1, 2] * f_) / den)
 
 
 def monoplot_collinearity_round_trip(inputs: dict) -> dict:
     """(1.4.7) ∘ (1.4.12) = identity: project (X, Y, Z) by the printed (1.4.12), bring it back by
-    the printed (1.4.7) with the same Z, and get (X, Y) exactly (sympy, every rotation A = Q/m)."""
-    Q, m = _quaternion_A()
-    A = Q / m
-    xi, yi = _collinearity_printed(A)
-    Xb, Yb = _monoplot_printed(A, xi, yi, Z)
-    return {"printed_equals_derived": bool(_cancel_zero(Xb - X) and _cancel_zero(Yb - Y))}   # nested: cancel
+    the printed (1.4.7) with the same Z, and get (X, Y) exactly (every rotation A = Q/m; exact
+    rational-function arithmetic in ℚ(a, b, c, d, X, Y, Z, …), see the module docstring)."""
+    v = _fraction_field([_qa, _qb, _qc, _qd, X, Y, Z, Xs, Ys, Zs, f, x0, y0])
+    A = _FieldMatrix(_quaternion_A_field(v))
+    xi, yi = _collinearity_printed(A, v)
+    Xb, Yb = _monoplot_printed(A, xi, yi, v[Z], v)
+    return {"printed_equals_derived": bool(Xb - v[X] == 0 and Yb - v[Y] == 0)}
 
 
 # --- §1.5 ----------------------------------------------------------------------------------------
@@ -167,24 +200,26 @@ def height_error_magnitude(inputs: dict) -> dict:
 # --- §1.7 ----------------------------------------------------------------------------------------
 def rectification_round_trip(inputs: dict) -> dict:
     """(1.7.5) and (1.7.10) as printed are mutually inverse for every rotation A = Q/m (sympy):
-    tilted → horizontal → tilted returns (x, y), horizontal → tilted → horizontal (x⁰, y⁰)."""
-    Q, m = _quaternion_A()
-    A = Q / m
+    tilted → horizontal → tilted returns (x, y), horizontal → tilted → horizontal (x⁰, y⁰); exact
+    rational-function arithmetic in ℚ(a, b, c, d, x, y, …), see the module docstring."""
+    v = _fraction_field([_qa, _qb, _qc, _qd, x, y, x0, y0, f, f0, xh, yh])
+    A = _FieldMatrix(_quaternion_A_field(v))
+    x_, y_, x0_, y0_, f_, f0_, xh_, yh_ = (v[s] for s in (x, y, x0, y0, f, f0, xh, yh))
 
     def to_horizontal(xi, yi):                                        # (1.7.5)
-        u, v = xi - x0, yi - y0
-        den = A[2, 0] * u + A[2, 1] * v - A[2, 2] * f
-        return (-f0 * (A[0, 0] * u + A[0, 1] * v - A[0, 2] * f) / den,
-                -f0 * (A[1, 0] * u + A[1, 1] * v - A[1, 2] * f) / den)
+        u, w = xi - x0_, yi - y0_
+        den = A[2, 0] * u + A[2, 1] * w - A[2, 2] * f_
+        return (-f0_ * (A[0, 0] * u + A[0, 1] * w - A[0, 2] * f_) / den,
+                -f0_ * (A[1, 0] * u + A[1, 1] * w - A[1, 2] * f_) / den)
 
     def to_tilted(xo, yo):                                            # (1.7.10)
-        den = A[0, 2] * xo + A[1, 2] * yo - A[2, 2] * f0
-        return (x0 - f * (A[0, 0] * xo + A[1, 0] * yo - A[2, 0] * f0) / den,
-                y0 - f * (A[0, 1] * xo + A[1, 1] * yo - A[2, 1] * f0) / den)
+        den = A[0, 2] * xo + A[1, 2] * yo - A[2, 2] * f0_
+        return (x0_ - f_ * (A[0, 0] * xo + A[1, 0] * yo - A[2, 0] * f0_) / den,
+                y0_ - f_ * (A[0, 1] * xo + A[1, 1] * yo - A[2, 1] * f0_) / den)
 
-    xb, yb = to_tilted(*to_horizontal(x, y))
-    xo, yo = to_horizontal(*to_tilted(xh, yh))
-    ok = all(_cancel_zero(e) for e in (xb - x, yb - y, xo - xh, yo - yh))   # nested: sympy's cancel
+    xb, yb = to_tilted(*to_horizontal(x_, y_))
+    xo, yo = to_horizontal(*to_tilted(xh_, yh_))
+    ok = all(e == 0 for e in (xb - x_, yb - y_, xo - xh_, yo - yh_))   # field elements: exact zero
     return {"printed_equals_derived": bool(ok)}
 
 

@@ -201,6 +201,8 @@ def _convergence(inputs, partials):
             good = h.converged and err < np.radians(inputs["accept_arcsec"] / 3600)
             ok &= good and h.iterations <= 8
             iters.append(h.iterations if good else np.inf)
+            if not good:        # both outputs are now fixed ("no", "no convergence"): the other pairs cannot change them
+                break
         label = f"az {az:g}°"
         out[f"converges within 8 iterations [{label}]"] = "yes" if ok else "no"
         worst = max(iters)
