@@ -26,7 +26,7 @@ import numpy as np
 from . import _bundle_generated
 
 __all__ = ["load", "collinearity", "normal_blocks", "invert_3x3", "reduce_to_band", "scale_band", "back_substitute",
-           "image_components"]
+           "image_components", "reverse_cuthill_mckee"]
 
 _jit = numba.njit(cache=True, nogil=True)
 _point_kaw = _jit(_bundle_generated.collinearity_kaw_point)
@@ -219,6 +219,60 @@ def image_components(image, point, n, k, labels):   # pragma: no cover (compiled
     return count
 
 
+@_jit
+def reverse_cuthill_mckee(indices, indptr, seeds, degree, order):   # pragma: no cover (compiled)
+    """Reverse Cuthill–McKee numbering of a symmetric graph in CSR form (``indices``, ``indptr``), in place.
+
+    The algorithm of ``scipy.sparse.csgraph.reverse_cuthill_mckee`` (symmetric mode), step for
+    step, so the numbering is the same: breadth-first from the unvisited node of lowest degree
+    (``seeds`` = ``np.argsort(degree)``, computed by numpy as scipy does; ``degree`` counts the
+    diagonal twice), the new neighbours of each node sorted by degree (insertion sort), the
+    result reversed into ``order``.
+    """
+    n = indptr.shape[0] - 1
+    inds = seeds.copy()
+    rev = np.empty(n, np.intp)
+    for k in range(n):
+        rev[inds[k]] = k
+    cm = np.empty(n, np.intp)
+    temp = np.empty(max(n, 1), np.intp)
+    N = 0
+    for zz in range(n):
+        if inds[zz] != -1:
+            seed = inds[zz]
+            cm[N] = seed
+            N += 1
+            inds[rev[seed]] = -1
+            level_start, level_end = N - 1, N
+            while level_start < level_end:
+                for ii in range(level_start, level_end):
+                    i = cm[ii]
+                    n_old = N
+                    for jj in range(indptr[i], indptr[i + 1]):
+                        j = indices[jj]
+                        if inds[rev[j]] != -1:
+                            inds[rev[j]] = -1
+                            cm[N] = j
+                            N += 1
+                    level_len = 0
+                    for kk in range(n_old, N):
+                        temp[level_len] = degree[cm[kk]]
+                        level_len += 1
+                    for kk in range(1, level_len):
+                        t, t2, ll = temp[kk], cm[n_old + kk], kk
+                        while ll > 0 and t < temp[ll - 1]:
+                            temp[ll] = temp[ll - 1]
+                            cm[n_old + ll] = cm[n_old + ll - 1]
+                            ll -= 1
+                        temp[ll] = t
+                        cm[n_old + ll] = t2
+                level_start, level_end = level_end, N
+        if N == n:
+            break
+    for k in range(n):
+        order[k] = cm[n - 1 - k]
+
+
 def load() -> float:
     """Load (or, on a new machine, compile) every kernel now, and find the BLAS libraries; the seconds it took.
 
@@ -265,3 +319,6 @@ def _warm_up():
     scale_band(band, np.ones(n * q))
     back_substitute(image, point, W, np.zeros((n, q)), iN22, L2, np.ones(k, bool), np.empty((k, 3)))
     image_components(image, point, n, k, np.empty(n, np.intp))
+    ptr2 = np.arange(n + 1, dtype=np.intp)
+    reverse_cuthill_mckee(np.zeros(n, np.intp), ptr2, np.zeros(n, np.intp), np.full(n, 2, np.int32),
+                          np.empty(n, np.intp))

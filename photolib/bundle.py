@@ -839,8 +839,9 @@ def _zstar_check(cameras, points, image, point, order):
 
 def _raise_behind(zstar, point):
     """PointBehindCameraError for the observations whose point has z* ≥ 0 (behind the image)."""
-    if np.any(zstar >= 0):
-        bad = np.flatnonzero(zstar >= 0)
+    behind = zstar >= 0
+    if behind.any():
+        bad = np.flatnonzero(behind)
         raise PointBehindCameraError(
             f"observations {bad[:10].tolist()}: the point is not in front of the image (z* ≥ 0)",
             points=np.unique(np.asarray(point)[bad]).tolist())

@@ -1169,8 +1169,7 @@ def _block_pattern(frame, point, n_frames, n_points, q, free_frames, free_points
     ``order``: the unknowns of the renumbered system as indices of the free image unknowns;
     ``bandwidth``: its half-bandwidth.
     """
-    from scipy import sparse
-    from scipy.sparse.csgraph import reverse_cuthill_mckee
+    from . import _block_kernels as kernels
     coupled = np.flatnonzero(free_points[point] & free_frames[frame])
     coupled = coupled[np.argsort(point[coupled], kind="stable")]       # the blocks of one point side by side
     slot = np.full(frame.size, -1, np.intp)
@@ -1191,9 +1190,12 @@ def _block_pattern(frame, point, n_frames, n_points, q, free_frames, free_points
     row, col = edge // n_free, edge % n_free
     # the choice of _band_ordering (given numbering or reverse Cuthill–McKee, the narrower band),
     # made on the edge list at hand instead of a second sparse copy of the graph
-    graph = sparse.csr_matrix((np.ones(edge.size), col, np.searchsorted(row, np.arange(n_free + 1))),
-                              shape=(n_free, n_free))
-    rcm = reverse_cuthill_mckee(graph, symmetric_mode=True)
+    # (reverse Cuthill–McKee compiled, the same numbering as scipy.sparse.csgraph's: no sparse matrix needed;
+    # every image has its diagonal entry, which scipy's degree counts twice)
+    indptr = np.searchsorted(row, np.arange(n_free + 1))
+    degree = np.diff(indptr).astype(np.int32) + 1
+    rcm = np.empty(n_free, np.intp)
+    kernels.reverse_cuthill_mckee(col, indptr, np.argsort(degree), degree, rcm)
     rcm_position = np.empty(rcm.size, np.intp)
     rcm_position[rcm] = np.arange(rcm.size)
     natural = int(np.abs(row - col).max(initial=0))
@@ -1209,6 +1211,11 @@ def _block_pattern(frame, point, n_frames, n_points, q, free_frames, free_points
             # the same in every iteration: fixed points / images and the free image unknowns
             "fixed_points": np.flatnonzero(~free_points), "fixed_frames": np.flatnonzero(~free_frames),
             "keep": np.repeat(free_frames, q)}
+
+
+def _same(a, b):
+    """``np.array_equal`` for two arrays (the block-pattern cache test), without its argument handling."""
+    return a is b or (a.shape == b.shape and bool((a == b).all()))
 
 
 def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
@@ -1258,9 +1265,8 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
     free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
     frame, point = np.asarray(eq.frame, np.intp), np.asarray(eq.point, np.intp)
     pattern = None if cache is None else cache.get("pattern")
-    if pattern is None or not (pattern["frame"] is frame or np.array_equal(pattern["frame"], frame)) or \
-            not (pattern["point"] is point or np.array_equal(pattern["point"], point)) or \
-            not (np.array_equal(pattern["free"][0], free_frames) and np.array_equal(pattern["free"][1], free_points)):
+    if pattern is None or not (_same(pattern["frame"], frame) and _same(pattern["point"], point) and
+                               _same(pattern["free"][0], free_frames) and _same(pattern["free"][1], free_points)):
         pattern = _block_pattern(frame, point, n_frames, n_points, q, free_frames, free_points)
         if cache is not None:
             cache["pattern"] = pattern
@@ -1507,8 +1513,8 @@ class _BlockSolver:
 
     @staticmethod
     def vtpv(eq, pr):
-        return float(np.sum(eq.P * eq.L ** 2 if np.ndim(eq.P) == 0 else np.broadcast_to(eq.P, eq.L.shape) * eq.L ** 2)) + \
-            sum(float(np.sum(p[1] * p[0] ** 2)) for p in pr if p is not None)
+        return float((eq.P * eq.L ** 2 if np.ndim(eq.P) == 0 else np.broadcast_to(eq.P, eq.L.shape) * eq.L ** 2).sum()) + \
+            sum(float((p[1] * p[0] ** 2).sum()) for p in pr if p is not None)
 
     def solve(self, eq, pr, covariance):
         if self.with_globals:
@@ -1548,10 +1554,10 @@ class _BlockSolver:
 
     @staticmethod
     def finite(state):
-        return all(bool(np.all(np.isfinite(s))) for s in state)
+        return all(bool(np.isfinite(s).all()) for s in state)
 
     def converged(self, sol):
-        return all(bool(np.all(np.abs(d) < t)) for d, t in zip(self._deltas(sol), self.tols))
+        return all(bool((np.abs(d) < t).all()) for d, t in zip(self._deltas(sol), self.tols))
 
     def no_convergence(self, max_iter, sol):
         step = [float(np.abs(d).max(initial=0.0)) for d in self._deltas(sol)]
