@@ -1052,7 +1052,7 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
     (3.6.2) (= (1.2.2): the correction Δ is *added to the measured coordinates*, computed from
     them reduced to the principal point) are unknowns common to every image. They enter every
     correction equation (3.6.3) and join the reduced system after the points are eliminated
-    (:func:`photolib.lsq.solve_block_normal_equations_global`).
+    (:func:`photolib.lsq.solve_block_normal_equations`).
 
     Parameters
     ----------

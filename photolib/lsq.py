@@ -362,8 +362,6 @@ def _weighted_square_sum(V, P=None) -> float:
     return float(V @ _weighted(P, V))
 
 
-weighted_square_sum = _weighted_square_sum      # the former public name
-
 
 def _floats(value, what):
     try:
@@ -911,8 +909,6 @@ class BlockSolution:
     Q13: np.ndarray | None = None
     Q23: np.ndarray | None = None
 
-
-GlobalBlockSolution = BlockSolution         # the former name of the step with global unknowns
 
 
 def _block_sum(index, blocks, n):
@@ -1707,19 +1703,6 @@ def block_gauss_newton(linearize, frames0, points0, globals0=None, *, frame_obse
     return _iterate(solver, (frames, points, glob), max_iter, progress)
 
 
-def block_gauss_newton_global(linearize, frames0, points0, globals0, **kwargs) -> Adjustment:
-    """The former name of :func:`block_gauss_newton` with ``globals0`` (kept for callers)."""
-    return block_gauss_newton(linearize, frames0, points0, globals0, **kwargs)
-
-
-BlockAdjustment = GlobalBlockAdjustment = Adjustment      # the former result types: one type now
-
-
-def solve_block_normal_equations_global(eq, n_frames, n_points, **kwargs) -> BlockSolution:
-    """The former name of :func:`solve_block_normal_equations` with global unknowns (kept for callers)."""
-    return solve_block_normal_equations(eq, n_frames, n_points, **kwargs)
-
-
 def block_equations_dense(eq: BlockCorrectionEquations, n_frames: int, n_points: int, free_points=None):
     """The same correction equations as one dense (B, L, P) for :func:`solve_normal_equations`.
 
@@ -1814,7 +1797,7 @@ class GlobalBlockCorrectionEquations(BlockCorrectionEquations):
 def _solve_block_global(eq: GlobalBlockCorrectionEquations, n_frames: int, n_points: int, *,
                                         frame_prior=None, point_prior=None, global_prior=None, free_points=None,
                                         covariance: bool = False, rcond: float = 1e-12, global_names=(),
-                                        frame_names=()) -> GlobalBlockSolution:
+                                        frame_names=()) -> BlockSolution:
     """One linear step of a block adjustment with block-wide unknowns, by successive reduction.
 
     The points are eliminated exactly as in (3.5.16) (3×3 block inverses); the global unknowns

@@ -16,8 +16,8 @@ from photolib.bundle import (DISTORTION_NAMES, IO_NAMES, bundle_adjustment, chec
 from photolib.camera import InteriorOrientation
 from photolib.derivations import self_calibration_model
 from photolib.errors import ConvergenceError, DegenerateGeometryError, InputError
-from photolib.lsq import (GlobalBlockCorrectionEquations, global_block_equations_dense,
-                          solve_block_normal_equations_global, solve_normal_equations)
+from photolib.lsq import (GlobalBlockCorrectionEquations, global_block_equations_dense, solve_block_normal_equations,
+                          solve_normal_equations)
 
 TRUE_IO = InteriorOrientation(f=100.0, x0=0.05, y0=-0.03, k1=-2e-6, k2=1e-10, k3=0.0, p1=3e-6, p2=-2e-6)
 
@@ -41,7 +41,7 @@ def test_global_reduction_equals_dense_solution():
                                         B3=rng.normal(size=(m, r, g)))
     free = np.ones(npt, bool)
     free[[0, 1]] = False
-    sol = solve_block_normal_equations_global(eq, nf, npt, free_points=free, covariance=True)
+    sol = solve_block_normal_equations(eq, nf, npt, free_points=free, covariance=True)
     B, L, P = global_block_equations_dense(eq, nf, npt, free)
     d, Q = solve_normal_equations(B, L, P)
     nq = nf * q
