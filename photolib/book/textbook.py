@@ -133,12 +133,29 @@ def _quantity(raw: dict, where: str) -> Quantity:
 
 @lru_cache(maxsize=None)
 def load_chapter(number: int) -> Chapter:
-    """Read and validate ``textbook/chNN.toml``."""
+    """Read and validate ``textbook/chNN.toml`` and its fragments ``textbook/chNN_*.toml``.
+
+    A chapter may be split into fragments by topic (``ch05_matching.toml`` …); their examples
+    and formulas are appended, in file-name order, to those of ``chNN.toml``, which carries the
+    chapter's title. Ids must be unique across all the files of a chapter.
+    """
     path = textbook_dir() / f"ch{number:02d}.toml"
     if not path.exists():
         raise FileNotFoundError(f"no textbook data for chapter {number}: {path}")
     with path.open("rb") as fh:
         raw = tomllib.load(fh)
+    for fragment in sorted(textbook_dir().glob(f"ch{number:02d}_*.toml")):
+        with fragment.open("rb") as fh:
+            part = tomllib.load(fh)
+        unknown = set(part) - {"example", "formula", "seed"}
+        if unknown:
+            raise InputError(f"{fragment.name}: a fragment holds only examples and formulas, not {sorted(unknown)}")
+        part_seed = part.get("seed")
+        for kind in ("example", "formula"):
+            for entry in part.get(kind, []):
+                if part_seed and "seed" not in entry:
+                    entry = {**entry, "seed": part_seed}
+                raw.setdefault(kind, []).append(entry)
     seed = raw.get("seed", "")
     examples, seen = [], set()
     for ex in raw.get("example", []):
