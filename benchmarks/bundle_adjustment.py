@@ -120,9 +120,10 @@ def run_photolib(blk, cams0, pts0):
 def _factorisation_threads(blk):
     """BLAS threads the band Cholesky used at this block size (after the timed run, not timed).
 
-    photolib limits BLAS to one thread only when the band of S holds more than
-    ``photolib.lsq._ONE_THREAD_FROM`` numbers; below that it runs on the BLAS library's own
-    thread count. Computed from the block pattern the solver builds (same function, same inputs).
+    photolib limits BLAS to one thread when the band of S holds more than
+    ``photolib.lsq._ONE_THREAD_FROM`` numbers; below that the step is compiled (no BLAS call:
+    0 threads; a checkout before the compiled step used the BLAS library's own thread count).
+    Computed from the block pattern the solver builds (same function, same inputs).
     """
     try:
         from photolib import lsq
@@ -134,6 +135,8 @@ def _factorisation_threads(blk):
         stored = (pattern["bandwidth"] + 1) * pattern["order"].size
         if stored > lsq._ONE_THREAD_FROM:
             return 1.0
+        if hasattr(lsq, "_solve_block_compiled"):
+            return 0.0
         info = [i for i in lsq._blas_controller().info() if i.get("user_api") == "blas"]
         return float(max((i["num_threads"] for i in info), default=-1))
     except (ImportError, AttributeError, KeyError):          # another checkout (--before): unknown

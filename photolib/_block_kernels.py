@@ -26,7 +26,7 @@ import numpy as np
 from . import _bundle_generated
 
 __all__ = ["load", "collinearity", "normal_blocks", "invert_3x3", "reduce_to_band", "scale_band", "back_substitute",
-           "image_components", "reverse_cuthill_mckee"]
+           "image_components", "reverse_cuthill_mckee", "band_cholesky", "band_solve", "normal_step", "reduced_step"]
 
 _jit = numba.njit(cache=True, nogil=True)
 _point_kaw = _jit(_bundle_generated.collinearity_kaw_point)
@@ -273,6 +273,122 @@ def reverse_cuthill_mckee(indices, indptr, seeds, degree, order):   # pragma: no
         order[k] = cm[n - 1 - k]
 
 
+@_jit
+def band_cholesky(band):   # pragma: no cover (compiled)
+    """Cholesky factor L of a symmetric matrix in LAPACK's lower band storage, in place; the smallest pivot.
+
+    ``band[d, c]`` = A[c + d, c] on entry and L[c + d, c] on return (the layout of LAPACK's
+    ``dpbtrf`` with ``lower=1``, so LAPACK's ``dpbtrs`` can use the factor). Column-oriented
+    (left-looking) Cholesky–Banachiewicz: L_jj² = a_jj − Σ L_jk², L_ij = (a_ij − Σ L_ik L_jk)/L_jj
+    over the band. Returns min L_jj² (the pivots), or 0.0 at the first pivot that is not positive
+    (the factorisation stops there: the matrix is not positive definite).
+    """
+    kd = band.shape[0] - 1
+    n = band.shape[1]
+    smallest = np.inf
+    for j in range(n):
+        first = max(0, j - kd)
+        pivot = band[0, j]
+        for k in range(first, j):
+            pivot -= band[j - k, k] * band[j - k, k]
+        if not pivot > 0.0:
+            return 0.0
+        smallest = min(smallest, pivot)
+        diagonal = np.sqrt(pivot)
+        band[0, j] = diagonal
+        for i in range(j + 1, min(n, j + kd + 1)):
+            value = band[i - j, j]
+            for k in range(max(0, i - kd), j):
+                value -= band[i - k, k] * band[j - k, k]
+            band[i - j, j] = value / diagonal
+    return smallest
+
+
+@_jit
+def band_solve(factor, rhs):   # pragma: no cover (compiled)
+    """Solve L·Lᵀ·x = rhs in place with the band factor of :func:`band_cholesky` (forward, then back)."""
+    kd = factor.shape[0] - 1
+    n = factor.shape[1]
+    for i in range(n):
+        value = rhs[i]
+        for k in range(max(0, i - kd), i):
+            value -= factor[i - k, k] * rhs[k]
+        rhs[i] = value / factor[0, i]
+    for i in range(n - 1, -1, -1):
+        value = rhs[i]
+        for k in range(i + 1, min(n, i + kd + 1)):
+            value -= factor[k - i, i] * rhs[k]
+        rhs[i] = value / factor[0, i]
+
+
+@_jit
+def normal_step(frame, point, B1, B2, L, P, slot, N11, L1, N22, L2, W, frame_l, frame_p, point_l, point_p,
+                fixed_frames, fixed_points, rcond, iN22, status):   # pragma: no cover (compiled)
+    """First half of one linear step, (3.5.8) and the N₂₂⁻¹ of (3.5.16), in one call.
+
+    :func:`normal_blocks`; the direct observations of unknowns folded into the diagonal blocks
+    (N_ii += p, Lᴺ_i −= p·l; ``frame_p``/``point_p`` with 0 rows when there are none); identity
+    blocks and zero right-hand sides for fixed images and points; :func:`invert_3x3` of N₂₂.
+    """
+    normal_blocks(frame, point, B1, B2, L, P, slot, N11, L1, N22, L2, W)
+    for f in range(frame_p.shape[0]):
+        for i in range(frame_p.shape[1]):
+            N11[f, i, i] += frame_p[f, i]
+            L1[f, i] -= frame_p[f, i] * frame_l[f, i]
+    for p in range(point_p.shape[0]):
+        for i in range(3):
+            N22[p, i, i] += point_p[p, i]
+            L2[p, i] -= point_p[p, i] * point_l[p, i]
+    q = N11.shape[1]
+    for f in fixed_frames:
+        for i in range(q):
+            L1[f, i] = 0.0
+            for j in range(q):
+                N11[f, i, j] = 1.0 if i == j else 0.0
+    for p in fixed_points:
+        for i in range(3):
+            L2[p, i] = 0.0
+            for j in range(3):
+                N22[p, i, j] = 1.0 if i == j else 0.0
+    invert_3x3(N22, rcond, iN22, status)
+
+
+@_jit
+def reduced_step(ptr, slot_frame, slot_point, W, iN22, L2, position, N11, L1, order, keep_index, free_points,
+                 band, d1, d2):   # pragma: no cover (compiled)
+    """Second half of one linear step: (3.5.16), its band Cholesky and solution, (3.5.14) row 2.
+
+    :func:`reduce_to_band` into ``band`` (zeros on entry), scaled to unit diagonal
+    (:func:`scale_band`), :func:`band_cholesky`, the renumbered and scaled right-hand side
+    solved by :func:`band_solve` into ``d1`` (n_frames, q; zeros on entry), and
+    :func:`back_substitute` into ``d2``. Returns (0, smallest pivot) on success, (1, index) for
+    a diagonal element of S that is not positive (an unknown not determined), (2, 0.0) for a
+    failed factorisation.
+    """
+    s = L1.copy()
+    reduce_to_band(ptr, slot_frame, W, iN22, L2, position, N11, s, band)
+    n = band.shape[1]
+    scale = np.empty(n)
+    for c in range(n):
+        if not band[0, c] > 0.0:
+            return 1, float(c)
+        scale[c] = 1.0 / np.sqrt(band[0, c])
+    scale_band(band, scale)
+    smallest = band_cholesky(band)
+    if smallest == 0.0:
+        return 2, 0.0
+    flat = s.ravel()
+    rhs = np.empty(n)
+    for c in range(n):
+        rhs[c] = flat[keep_index[order[c]]] * scale[c]
+    band_solve(band, rhs)
+    out = d1.ravel()
+    for c in range(n):
+        out[keep_index[order[c]]] = rhs[c] * scale[c]
+    back_substitute(slot_frame, slot_point, W, d1, iN22, L2, free_points, d2)
+    return 0, smallest
+
+
 def load() -> float:
     """Load (or, on a new machine, compile) every kernel now, and find the BLAS libraries; the seconds it took.
 
@@ -319,6 +435,13 @@ def _warm_up():
     scale_band(band, np.ones(n * q))
     back_substitute(image, point, W, np.zeros((n, q)), iN22, L2, np.ones(k, bool), np.empty((k, 3)))
     image_components(image, point, n, k, np.empty(n, np.intp))
+    empty = np.zeros((0, q))
+    normal_step(image, point, B1, B2, L, np.ones((m, 2)), slot, N11, L1, N22, L2, W, empty, empty,
+                np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0, np.intp), np.zeros(0, np.intp), 1e-12, iN22,
+                np.zeros(k, np.int8))
+    reduced_step(np.arange(k + 1, dtype=np.intp), image, point, W, iN22, L2, np.zeros(n, np.intp), N11, L1,
+                 np.arange(n * q, dtype=np.intp), np.arange(n * q, dtype=np.intp), np.ones(k, bool),
+                 np.zeros((q, n * q), order="F"), np.zeros((n, q)), np.empty((k, 3)))
     ptr2 = np.arange(n + 1, dtype=np.intp)
     reverse_cuthill_mckee(np.zeros(n, np.intp), ptr2, np.zeros(n, np.intp), np.full(n, 2, np.int32),
                           np.empty(n, np.intp))

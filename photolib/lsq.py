@@ -946,6 +946,14 @@ def _invert_3x3_blocks(blocks, rcond):
     status = np.zeros(blocks.shape[0], np.int8)
     kernels.invert_3x3(blocks, rcond, inverse, status)
     if status.any():
+        _check_inverse_status(blocks, status, rcond)
+    return inverse
+
+
+def _check_inverse_status(blocks, status, rcond):
+    """Raise for the blocks :func:`photolib._block_kernels.invert_3x3` could not invert or doubted
+    (status 1: a diagonal element ≤ 0; status 2: decided here by the smallest eigenvalue)."""
+    if status.any():
         bad = np.flatnonzero(status == 1)
         if bad.size:
             raise DegenerateGeometryError(f"points {bad[:10].tolist()} are not determined by any observation")
@@ -956,7 +964,6 @@ def _invert_3x3_blocks(blocks, rcond):
             raise DegenerateGeometryError(
                 f"points {suspect[~(low >= rcond)][:10].tolist()} are not determined: their rays are (nearly) "
                 f"parallel (smallest scaled eigenvalue {np.nanmin(low):.1e})")
-    return inverse
 
 
 def _band_ordering(S):
@@ -1101,10 +1108,7 @@ class _Factorisation:
         # info > 0: the leading minor of that order is not positive definite
         self.min_pivot = 0.0 if info != 0 else float(pivots.min(initial=np.inf))
         if not self.min_pivot > rcond:
-            raise DegenerateGeometryError(
-                "the reduced normal matrix (3.5.16) is singular (smallest scaled pivot "
-                f"{self.min_pivot:.1e}): the block has a datum defect — too little control "
-                "(fixed or weighted control points, GNSS centres) to fix its position, rotation and scale")
+            raise _datum_defect(self.min_pivot)
 
     def solve(self, rhs):
         """S⁻¹·rhs for a vector or a matrix of right-hand sides."""
@@ -1133,6 +1137,13 @@ class _Factorisation:
             e[np.arange(start, stop), np.arange(stop - start)] = 1.0
             out[:, start:stop] = self.solve(e)
         return out
+
+
+def _datum_defect(min_pivot):
+    return DegenerateGeometryError(
+        "the reduced normal matrix (3.5.16) is singular (smallest scaled pivot "
+        f"{min_pivot:.1e}): the block has a datum defect — too little control "
+        "(fixed or weighted control points, GNSS centres) to fix its position, rotation and scale")
 
 
 def _check_diagonal(d):
@@ -1267,6 +1278,10 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
         if cache is not None:
             cache["pattern"] = pattern
     slot_frame, slot_point = pattern["slot_frame"], pattern["slot_point"]
+    if not covariance and (pattern["bandwidth"] + 1) * pattern["order"].size <= _ONE_THREAD_FROM and \
+            pattern["order"].size > dense_limit:
+        return _solve_block_compiled(eq, pattern, n_frames, n_points, frame_prior, point_prior, free_points,
+                                     rcond, t0)
 
     # normal-equation blocks (3.5.8) in the convention N·δ = Lᴺ of (3.5.13): N₁₁, Lᴺ₁ per image,
     # N₂₂, Lᴺ₂ per point, one q×3 block W of N₁₂ per observation of a free point in a free image.
@@ -1341,6 +1356,57 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
         Q2[~free_points] = 0.0
         timings["covariance"] = time.perf_counter() - t
     return BlockSolution(d1, d2, Q1, Q2, timings)
+
+
+def _solve_block_compiled(eq, pattern, n_frames, n_points, frame_prior, point_prior, free_points, rcond, t0):
+    """The same linear step as :func:`_solve_block` for small reduced systems, as two compiled calls.
+
+    For a band of up to ``_ONE_THREAD_FROM`` numbers (blocks of up to about ten images) the step
+    costs little arithmetic and much per-call overhead, so the normal-equation blocks, the direct
+    observations, the fixed unknowns and the N₂₂ inverses are one compiled call
+    (:func:`photolib._block_kernels.normal_step`), and the reduction, the scaling, the band
+    Cholesky (:func:`photolib._block_kernels.band_cholesky`, the algorithm of LAPACK's unblocked
+    ``dpbtf2``), the solution and the back-substitution another (``reduced_step``). The errors
+    are those of :func:`_solve_block`.
+    """
+    from . import _block_kernels as kernels
+    m, r, q = eq.B1.shape
+    frame, point = np.asarray(eq.frame, np.intp), np.asarray(eq.point, np.intp)
+    P = np.asarray(eq.P, dtype=float)
+    P = np.full((m, r), P) if P.ndim == 0 else np.ascontiguousarray(np.broadcast_to(P, (m, r)))
+    N11, L1 = np.zeros((n_frames, q, q)), np.zeros((n_frames, q))
+    N22, L2 = np.zeros((n_points, 3, 3)), np.zeros((n_points, 3))
+    slot_frame = pattern["slot_frame"]
+    W = np.zeros((slot_frame.size, q, 3))
+    fl, fp = _prior_arrays(frame_prior, (n_frames, q))
+    pl, pp = _prior_arrays(point_prior, (n_points, 3))
+    iN22, status = np.empty((n_points, 3, 3)), np.zeros(n_points, np.int8)
+    kernels.normal_step(frame, point, np.ascontiguousarray(eq.B1, dtype=float), np.ascontiguousarray(eq.B2, dtype=float),
+                        np.ascontiguousarray(eq.L, dtype=float), P, pattern["slot"], N11, L1, N22, L2, W, fl, fp, pl, pp,
+                        pattern["fixed_frames"], pattern["fixed_points"], rcond, iN22, status)
+    if status.any():
+        _check_inverse_status(N22, status, rcond)
+    order = pattern["order"]
+    if "keep_index" not in pattern:
+        pattern["keep_index"] = np.flatnonzero(pattern["keep"])
+    band = np.zeros((pattern["bandwidth"] + 1, order.size), order="F")
+    d1, d2 = np.zeros((n_frames, q)), np.empty((n_points, 3))
+    code, value = kernels.reduced_step(pattern["ptr"], slot_frame, pattern["slot_point"], W, iN22, L2,
+                                       pattern["position"], N11, L1, order, pattern["keep_index"], free_points,
+                                       band, d1, d2)
+    if code == 1:                      # the band is reduced but not yet scaled: the check of _solve_block
+        _check_diagonal(np.sqrt(band[0]))
+    if code == 2 or not value > rcond:
+        raise _datum_defect(value)
+    return BlockSolution(d1, d2, None, None, {"linear step (compiled)": time.perf_counter() - t0})
+
+
+def _prior_arrays(prior, shape):
+    """(l, p) of direct observations as contiguous arrays of ``shape`` ((0, k) arrays when there are none)."""
+    if prior is None:
+        empty = np.zeros((0, shape[1]))
+        return empty, empty
+    return tuple(np.ascontiguousarray(np.broadcast_to(np.asarray(a, dtype=float), shape)) for a in prior)
 
 
 def _add_priors(prior, N, L):
