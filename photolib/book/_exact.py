@@ -172,7 +172,7 @@ def _simplify_zero(e) -> bool:
     return sp.simplify(e) == 0
 
 
-def lambdify(args, expr, modules=None):
+def lambdify(args, expr, modules="numpy"):
     """``sympy.lambdify`` without the generated docstring: the same code and numbers, but the
     docstring prints the whole expression, which for the large partials costs as much as the code."""
     try:

@@ -20,7 +20,7 @@ import sympy as sp
 from sympy.polys.fields import field
 
 from .. import camera, single_image
-from ._exact import zero
+from ._exact import lambdify, zero
 from ..derivations import X, Xs, Y, Ys, Z, Zs, f, rotation_matrix_symbolic, x, x0, y, y0
 
 _qa, _qb, _qc, _qd = sp.symbols("q_a q_b q_c q_d", real=True)
@@ -105,7 +105,7 @@ def ray_vector(inputs: dict) -> dict:
     io = camera.InteriorOrientation(100.0, 0.2, -0.3, **coeffs)
     pts = rng.uniform(-40, 40, (10, 2))
     d = camera.distortion_correction(pts, io) if with_distortion else np.zeros_like(pts)
-    fn = sp.lambdify((x, y, x0, y0, f, dx, dy), list(printed))
+    fn = lambdify((x, y, x0, y0, f, dx, dy), list(printed))
     expected = np.column_stack(np.broadcast_arrays(*fn(pts[:, 0], pts[:, 1], io.x0, io.y0, io.f, d[:, 0], d[:, 1])))
     numeric = np.allclose(camera.image_vector(pts, io, distortion=with_distortion), expected, atol=1e-12)
     return {"printed_equals_derived": bool(symbolic and numeric)}
@@ -189,7 +189,8 @@ def height_error_magnitude(inputs: dict) -> dict:
     dX = X154.subs(Z, Z + dZ) - X154
     dY = Y154.subs(Z, Z + dZ) - Y154
     printed_dX, printed_dY = x / f * dZ, y / f * dZ
-    ok = (zero(sp.Abs(dX) - sp.Abs(printed_dX)) and zero(sp.Abs(dY) - sp.Abs(printed_dY))
+    # equal magnitudes of real quantities: equal squares (an exact polynomial identity)
+    ok = (zero(dX ** 2 - printed_dX ** 2) and zero(dY ** 2 - printed_dY ** 2)
           and zero(dX + printed_dX))         # the sign: a point raised by ΔZ moves towards the nadir
     xs, ys = np.array([30.0, -12.0]), np.array([25.0, 7.5])
     _, _, dR = single_image.planimetric_error_from_height_error(xs, ys, 50.0, 10.0)
