@@ -280,20 +280,22 @@ def band_cholesky(band):   # pragma: no cover (compiled)
     ``band[d, c]`` = A[c + d, c] on entry and L[c + d, c] on return (the layout of LAPACK's
     ``dpbtrf`` with ``lower=1``, so LAPACK's ``dpbtrs`` can use the factor). Column-oriented
     (left-looking) Cholesky–Banachiewicz: L_jj² = a_jj − Σ L_jk², L_ij = (a_ij − Σ L_ik L_jk)/L_jj
-    over the band. Returns min L_jj² (the pivots), or 0.0 at the first pivot that is not positive
-    (the factorisation stops there: the matrix is not positive definite).
+    over the band. Returns (min L_jj², the column where it occurs) — the pivots — or (0.0, j) at
+    the first column j whose pivot is not positive (the factorisation stops there: the matrix is
+    not positive definite).
     """
     kd = band.shape[0] - 1
     n = band.shape[1]
-    smallest = np.inf
+    smallest, where = np.inf, -1
     for j in range(n):
         first = max(0, j - kd)
         pivot = band[0, j]
         for k in range(first, j):
             pivot -= band[j - k, k] * band[j - k, k]
         if not pivot > 0.0:
-            return 0.0
-        smallest = min(smallest, pivot)
+            return 0.0, j
+        if pivot < smallest:
+            smallest, where = pivot, j
         diagonal = np.sqrt(pivot)
         band[0, j] = diagonal
         for i in range(j + 1, min(n, j + kd + 1)):
@@ -301,7 +303,7 @@ def band_cholesky(band):   # pragma: no cover (compiled)
             for k in range(max(0, i - kd), j):
                 value -= band[i - k, k] * band[j - k, k]
             band[i - j, j] = value / diagonal
-    return smallest
+    return smallest, where
 
 
 @_jit
@@ -361,9 +363,9 @@ def reduced_step(ptr, slot_frame, slot_point, W, iN22, L2, position, N11, L1, or
     :func:`reduce_to_band` into ``band`` (zeros on entry), scaled to unit diagonal
     (:func:`scale_band`), :func:`band_cholesky`, the renumbered and scaled right-hand side
     solved by :func:`band_solve` into ``d1`` (n_frames, q; zeros on entry), and
-    :func:`back_substitute` into ``d2``. Returns (0, smallest pivot) on success, (1, index) for
-    a diagonal element of S that is not positive (an unknown not determined), (2, 0.0) for a
-    failed factorisation.
+    :func:`back_substitute` into ``d2``. Returns (0, smallest pivot, its column) on success,
+    (1, 0.0, column) for a diagonal element of S that is not positive (an unknown not
+    determined), (2, 0.0, column) for a failed factorisation (columns of the renumbered system).
     """
     s = L1.copy()
     reduce_to_band(ptr, slot_frame, W, iN22, L2, position, N11, s, band)
@@ -371,12 +373,12 @@ def reduced_step(ptr, slot_frame, slot_point, W, iN22, L2, position, N11, L1, or
     scale = np.empty(n)
     for c in range(n):
         if not band[0, c] > 0.0:
-            return 1, float(c)
+            return 1, 0.0, c
         scale[c] = 1.0 / np.sqrt(band[0, c])
     scale_band(band, scale)
-    smallest = band_cholesky(band)
+    smallest, where = band_cholesky(band)
     if smallest == 0.0:
-        return 2, 0.0
+        return 2, 0.0, where
     flat = s.ravel()
     rhs = np.empty(n)
     for c in range(n):
@@ -386,7 +388,7 @@ def reduced_step(ptr, slot_frame, slot_point, W, iN22, L2, position, N11, L1, or
     for c in range(n):
         out[keep_index[order[c]]] = rhs[c] * scale[c]
     back_substitute(slot_frame, slot_point, W, d1, iN22, L2, free_points, d2)
-    return 0, smallest
+    return 0, smallest, where
 
 
 def load() -> float:

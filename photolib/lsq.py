@@ -1108,7 +1108,10 @@ class _Factorisation:
         # info > 0: the leading minor of that order is not positive definite
         self.min_pivot = 0.0 if info != 0 else float(pivots.min(initial=np.inf))
         if not self.min_pivot > rcond:
-            raise _datum_defect(self.min_pivot)
+            error = _datum_defect(self.min_pivot)
+            error.min_pivot = self.min_pivot
+            error.column = int(info) - 1 if info > 0 else int(np.argmin(pivots))   # in the renumbered system
+            raise error
 
     def solve(self, rhs):
         """S⁻¹·rhs for a vector or a matrix of right-hand sides."""
@@ -1144,6 +1147,25 @@ def _datum_defect(min_pivot):
         "the reduced normal matrix (3.5.16) is singular (smallest scaled pivot "
         f"{min_pivot:.1e}): the block has a datum defect — too little control "
         "(fixed or weighted control points, GNSS centres) to fix its position, rotation and scale")
+
+
+def _singular_block(min_pivot, column, pattern, frame):
+    """The error for a singular reduced matrix of a block, naming the image where the factorisation failed.
+
+    ``column`` is the column of the renumbered reduced system whose pivot failed (or the smallest);
+    the unknown there belongs to one image, whose observations are counted.
+    """
+    free_images = np.flatnonzero(pattern["free"][0])
+    q = pattern["keep"].size // pattern["free"][0].size
+    unknown = int(pattern["order"][column])
+    image = int(free_images[unknown // q])
+    seen = int(np.count_nonzero(frame == image))
+    return DegenerateGeometryError(
+        "the reduced normal matrix (3.5.16) is singular (smallest scaled pivot "
+        f"{min_pivot:.1e}, first at unknown {unknown % q} of image {image}, which has {seen} observations): "
+        "either the points of that image do not determine it (too few, on one line, or tie points "
+        "seen by no other image) or the block has a datum defect — too little control (fixed or "
+        "weighted control points, GNSS centres) to fix its position, rotation and scale")
 
 
 def _check_diagonal(d):
@@ -1324,7 +1346,10 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
     kernels.scale_band(band, 1.0 / d)
     scale = np.empty(n_unknowns)
     scale[order] = 1.0 / d
-    fac = _Factorisation.from_band(band, order, scale, rcond, dense=n_unknowns <= dense_limit)
+    try:
+        fac = _Factorisation.from_band(band, order, scale, rcond, dense=n_unknowns <= dense_limit)
+    except DegenerateGeometryError as singular:
+        raise _singular_block(singular.min_pivot, singular.column, pattern, frame) from None
     del band
     timings["factorisation"] = time.perf_counter() - t
 
@@ -1391,13 +1416,13 @@ def _solve_block_compiled(eq, pattern, n_frames, n_points, frame_prior, point_pr
         pattern["keep_index"] = np.flatnonzero(pattern["keep"])
     band = np.zeros((pattern["bandwidth"] + 1, order.size), order="F")
     d1, d2 = np.zeros((n_frames, q)), np.empty((n_points, 3))
-    code, value = kernels.reduced_step(pattern["ptr"], slot_frame, pattern["slot_point"], W, iN22, L2,
-                                       pattern["position"], N11, L1, order, pattern["keep_index"], free_points,
-                                       band, d1, d2)
+    code, value, column = kernels.reduced_step(pattern["ptr"], slot_frame, pattern["slot_point"], W, iN22, L2,
+                                               pattern["position"], N11, L1, order, pattern["keep_index"],
+                                               free_points, band, d1, d2)
     if code == 1:                      # the band is reduced but not yet scaled: the check of _solve_block
         _check_diagonal(np.sqrt(band[0]))
     if code == 2 or not value > rcond:
-        raise _datum_defect(value)
+        raise _singular_block(value, column, pattern, frame)
     return BlockSolution(d1, d2, None, None, {"linear step (compiled)": time.perf_counter() - t0})
 
 

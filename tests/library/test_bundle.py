@@ -299,3 +299,20 @@ def test_synthetic_block_layout():
     assert np.std(blk.observations.xy - blk.xy_true) == pytest.approx(blk.sigma, rel=0.1)
     again = synthetic.aerial_block(3, 8, points_per_image=25, seed=2)
     np.testing.assert_array_equal(again.observations.xy, blk.observations.xy)
+
+
+def test_an_undetermined_image_is_named():
+    """aerial_block(2, 3, points_per_image=10, seed=1): image 3 measures three points — control point
+    17 (two equations for its orientation) and tie points 9 and 12, each seen by one other image
+    only (four equations for its three coordinates: one left over for the orientation). Four
+    equations for six unknowns: the error names image 3, in both linear solvers."""
+    blk = synthetic.aerial_block(2, 3, points_per_image=10, seed=1)
+    o = blk.observations
+    assert sorted(o.point[o.image == 3]) == [9, 12, 17] and 17 in blk.control
+    assert np.bincount(o.point)[[9, 12]].tolist() == [2, 2]
+    cams0, pts0 = blk.start_values(seed=2)
+    control = {int(i): blk.points[i] for i in blk.control}
+    for covariance in (False, True):
+        with pytest.raises(DegenerateGeometryError, match=r"image 3, which has 3 observations"):
+            bundle_adjustment(o, cams0, pts0, blk.io, control=control, sigma_image=0.005, order=blk.order,
+                              covariance=covariance)

@@ -219,9 +219,10 @@ def test_compiled_band_cholesky_equals_lapack(seed):
     for d in range(kd + 1):
         band[d, :n - d] = np.diag(A, -d)
     reference = cholesky_banded(band.copy(), lower=True)
-    smallest = _block_kernels.band_cholesky(band)
+    smallest, where = _block_kernels.band_cholesky(band)
     np.testing.assert_allclose(band, reference, rtol=1e-13, atol=1e-13)
-    assert smallest == pytest.approx((np.diag(np.linalg.cholesky(A)) ** 2).min(), rel=1e-12)
+    pivots = np.diag(np.linalg.cholesky(A)) ** 2
+    assert smallest == pytest.approx(pivots.min(), rel=1e-12) and where == np.argmin(pivots)
     rhs = rng.normal(size=n)
     x = rhs.copy()
     _block_kernels.band_solve(band, x)
@@ -229,7 +230,7 @@ def test_compiled_band_cholesky_equals_lapack(seed):
     np.testing.assert_allclose(A @ x, rhs, rtol=1e-10, atol=1e-10)
     indefinite = band.copy()
     indefinite[0, n // 2] = -1.0
-    assert _block_kernels.band_cholesky(indefinite) == 0.0
+    assert _block_kernels.band_cholesky(indefinite) == (0.0, n // 2)
 
 
 def test_compiled_step_equals_the_lapack_step(block):
