@@ -1,4 +1,4 @@
-"""Command line: ``photolib verify [--chapter N] [--json]`` and ``photolib --version``.
+"""Command line: ``photolib verify [--chapter N] [--json] [--jobs N]`` and ``photolib --version``.
 
 ``verify`` recomputes every published number recorded in ``textbook/`` with the library, prints
 one row per quantity (chapter, example, quantity, book value, computed value, status) and a
@@ -17,7 +17,7 @@ import sys
 
 from .. import __version__
 from .textbook import available_chapters
-from .verify import summary, verify
+from .verify import default_jobs, summary, verify
 
 USAGE_ERROR = 2
 STATUS_CHANGED = 1
@@ -47,6 +47,8 @@ def build_parser() -> argparse.ArgumentParser:
     p_verify.add_argument("--chapter", type=int, action="append",
                           help="only this chapter (repeatable)")
     p_verify.add_argument("--json", action="store_true", help="print the rows and the summary as JSON")
+    p_verify.add_argument("--jobs", type=int, default=None, metavar="N",
+                          help="worker processes (default: the CPUs available, at most 8; 1: no workers)")
     return parser
 
 
@@ -63,7 +65,10 @@ def main(argv=None) -> int:
                              f"{', '.join(map(str, unknown))} (available: {listed})\n")
             return USAGE_ERROR
 
-    rows = verify(args.chapter)
+    if args.jobs is not None and args.jobs < 1:
+        sys.stderr.write(f"photolib: error: --jobs must be at least 1, got {args.jobs}\n")
+        return USAGE_ERROR
+    rows = verify(args.chapter, jobs=default_jobs() if args.jobs is None else args.jobs)
     counts = summary(rows)
     if args.json:
         json.dump({"rows": [r.as_dict() for r in rows], "summary": counts}, sys.stdout,

@@ -23,7 +23,8 @@ def test_version(capsys):
 
 
 @pytest.mark.parametrize("argv", [["verify", "--chapter", "9"], ["verify", "--chapter", "x"],
-                                  ["verify", "--no-such-flag"], ["no-such-command"], []])
+                                  ["verify", "--no-such-flag"], ["no-such-command"], [],
+                                  ["verify", "--jobs", "0"], ["verify", "--jobs", "two"]])
 def test_usage_errors_are_one_line_and_exit_2(argv, capsys):
     try:
         code = main(argv)
@@ -39,6 +40,14 @@ def test_unknown_chapter_names_the_available_ones(capsys):
     assert main(["verify", "--chapter", "9"]) == 2
     err = capsys.readouterr().err
     assert "chapter 9" in err and "1, 2, 3, 4" in err
+
+
+def test_parallel_verify_gives_the_same_rows_in_the_same_order():
+    """Worker processes (forked) check the entries of chapter 4; the rows equal the serial run's."""
+    from photolib.book.verify import verify
+    serial = [r.as_dict() for r in verify([4], jobs=1)]
+    parallel = [r.as_dict() for r in verify([4], jobs=2)]
+    assert parallel == serial and len(serial) > 100
 
 
 def test_a_changed_status_exits_1(tmp_path, monkeypatch, capsys):
