@@ -15,6 +15,12 @@ simulation settings), whose points carry one :class:`PointKind` each:
 * :func:`corridor_strip` — a single-strip UAV corridor with GNSS centres and a moving target
   (§3.9, figs. 3.25/3.26).
 
+For Chapters 5–6 (matching, DSM, DTM) the ground truth is a rendered scene:
+:func:`terrain_scene` (ground, buildings, trees, texture → :class:`TerrainScene`) and
+:func:`render_image` (z-buffered rendering into a Chapter-1 frame camera → :class:`Rendering`,
+with the object point seen by every pixel); :func:`pixel_to_image` / :func:`image_to_pixel`
+convert between pixel positions and image coordinates of such a frame.
+
 The camera layout of the regular generators (footprint, base, strip spacing, strip and column
 of every image) is one function, :func:`strip_layout`; the regular layouts of §3.2–§3.4 are
 :func:`photolib.strip_triangulation.layout_block`. Projections use the collinearity equations
@@ -33,13 +39,14 @@ from typing import NamedTuple
 import numpy as np
 
 from .camera import InteriorOrientation
-from .errors import InputError
+from .errors import DegenerateGeometryError, InputError, PointBehindCameraError
 from .single_image import project_to_images
 from .rotation import check_order
 
 __all__ = ["PointKind", "TIE", "CONTROL", "CHECK", "ORIENTATION", "Observations", "Block", "StripLayout",
            "strip_layout", "terrain_height", "footprint_visibility", "aerial_block", "footprint_block",
-           "rig_block", "rolling_shutter_block", "corridor_strip", "StereoPair", "stereo_pair"]
+           "rig_block", "rolling_shutter_block", "corridor_strip", "StereoPair", "stereo_pair",
+           "TerrainScene", "terrain_scene", "Rendering", "render_image", "pixel_to_image", "image_to_pixel"]
 
 
 class PointKind(IntEnum):
@@ -1458,3 +1465,626 @@ def stereo_pair(n_points: int = 12, *, seed: int = 0, rng=None, f: float = 100.0
     if sigma:
         xy_meas = [x + rng.normal(0, sigma, x.shape) for x in xy_true]
     return StereoPair(camera, order, C, A, points, xy_meas[0], xy_meas[1], xy_true[0], xy_true[1], float(sigma))
+
+
+# --- Chapters 5–6: a textured terrain with buildings and trees, rendered into frame cameras -------------
+def _smooth_noise(rng, shape, sigma_cells: float) -> np.ndarray:
+    """Gaussian-filtered white noise scaled to unit standard deviation (``sigma_cells`` in grid cells)."""
+    from scipy.ndimage import gaussian_filter
+    field = gaussian_filter(rng.standard_normal(shape), sigma_cells, mode="reflect")
+    return (field - field.mean()) / max(field.std(), 1e-12)
+
+
+def _pair_range(value, what: str, positive: bool = True) -> tuple[float, float]:
+    arr = np.asarray(value, dtype=object)
+    if arr.shape != (2,):
+        raise InputError(f"{what} must be a (low, high) pair, got {value!r}")
+    lo, hi = (_finite(v, what, positive=positive, nonnegative=not positive) for v in value)
+    if lo > hi:
+        raise InputError(f"{what}: low {lo} exceeds high {hi}")
+    return lo, hi
+
+
+def _tri_interpolate(x, y, values, X, Y, what: str = "points"):
+    """Piecewise-linear interpolation on the scene's triangulation (two triangles per cell, diagonal
+    from node (i, j) to node (i + 1, j + 1)); NaN outside the grid."""
+    try:
+        X, Y = np.broadcast_arrays(np.asarray(X, dtype=float), np.asarray(Y, dtype=float))
+    except (TypeError, ValueError):
+        raise InputError(f"{what}: X and Y must be numbers of broadcastable shapes") from None
+    if not (np.all(np.isfinite(X)) and np.all(np.isfinite(Y))):
+        raise InputError(f"{what}: X, Y contain NaN or inf")
+    dx, dy = x[1] - x[0], y[1] - y[0]
+    fu, fv = (X - x[0]) / dx, (Y - y[0]) / dy
+    inside = (fu >= -1e-9) & (fu <= len(x) - 1 + 1e-9) & (fv >= -1e-9) & (fv <= len(y) - 1 + 1e-9)
+    j = np.clip(np.floor(fu).astype(int), 0, len(x) - 2)
+    i = np.clip(np.floor(fv).astype(int), 0, len(y) - 2)
+    u, v = np.clip(fu - j, 0, 1), np.clip(fv - i, 0, 1)
+    z00, z01, z10, z11 = values[i, j], values[i, j + 1], values[i + 1, j], values[i + 1, j + 1]
+    lower = u >= v                        # triangle (i, j), (i, j + 1), (i + 1, j + 1)
+    out = np.where(lower, z00 + u * (z01 - z00) + v * (z11 - z01), z00 + v * (z10 - z00) + u * (z11 - z10))
+    return np.where(inside, out, np.nan)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class TerrainScene:
+    """A synthetic scene with known truth: ground (DTM), surface (DSM), buildings, trees, texture.
+
+    The surface is a regular grid of heights; between the nodes it is piecewise linear on two
+    triangles per cell (split along the diagonal from node (i, j) to node (i + 1, j + 1)) — the
+    surface :func:`render_image` draws and :meth:`surface_at` interpolates, so the two agree
+    exactly. Building walls therefore slope across one grid cell.
+
+    Attributes
+    ----------
+    x : (nx,) array
+        X of the grid columns, ascending, m.
+    y : (ny,) array
+        Y of the grid rows, ascending (row 0 is the smallest Y: plot with ``origin="lower"``), m.
+    ground : (ny, nx) array
+        Bare-earth heights (the DTM), m.
+    surface : (ny, nx) array
+        Surface heights (the DSM): ground plus buildings plus tree canopies, m.
+    buildings : (ny, nx) bool array
+        Nodes on a building (roof).
+    trees : (ny, nx) bool array
+        Nodes under a tree canopy higher than 0.3 m above the ground.
+    albedo : (ny, nx) array
+        Texture (reflectance) in [0, 1] at the nodes.
+    footprints : (b, 4) array
+        Building footprints X_min, X_max, Y_min, Y_max, m.
+    seed : int
+        The seed the scene was drawn with.
+
+    References
+    ----------
+    Chibunichev (2022), §6.1–6.3 (DSM), §6.5 (voxel SGM), §6.6–6.7 (DTM): the book prints no
+    test scene; this is the ground truth its algorithms are tested against.
+
+    Examples
+    --------
+    >>> from photolib.synthetic import terrain_scene
+    >>> sc = terrain_scene(extent=40.0, spacing=1.0, n_buildings=1, seed=0)
+    >>> sc
+    TerrainScene(41 × 41 nodes, spacing 1.0 m, 1 buildings, 0 trees)
+    >>> bool(np.all(sc.surface >= sc.ground)), bool(sc.albedo.min() >= 0)
+    (True, True)
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    ground: np.ndarray
+    surface: np.ndarray
+    buildings: np.ndarray
+    trees: np.ndarray
+    albedo: np.ndarray
+    footprints: np.ndarray
+    seed: int = 0
+
+    def __post_init__(self):
+        x = np.asarray(self.x, dtype=float)
+        y = np.asarray(self.y, dtype=float)
+        if x.ndim != 1 or y.ndim != 1 or len(x) < 2 or len(y) < 2:
+            raise InputError("a scene needs at least 2 × 2 grid nodes (1-D x and y axes)")
+        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
+            raise InputError("scene axes contain NaN or inf")
+        dx, dy = np.diff(x), np.diff(y)
+        if not (np.all(dx > 0) and np.allclose(dx, dx[0]) and np.all(dy > 0) and np.allclose(dy, dy[0])):
+            raise InputError("scene axes must be ascending and regularly spaced")
+        checked = {"x": x, "y": y}
+        for name in ("ground", "surface", "albedo"):
+            arr = np.asarray(getattr(self, name), dtype=float)
+            if arr.shape != (len(y), len(x)):
+                raise InputError(f"scene {name} must have shape {(len(y), len(x))}, got {arr.shape}")
+            if not np.all(np.isfinite(arr)):
+                raise InputError(f"scene {name} contains NaN or inf")
+            checked[name] = arr
+        for name in ("buildings", "trees"):
+            arr = np.asarray(getattr(self, name), dtype=bool)
+            if arr.shape != (len(y), len(x)):
+                raise InputError(f"scene {name} must have shape {(len(y), len(x))}, got {arr.shape}")
+            checked[name] = arr
+        checked["footprints"] = np.asarray(self.footprints, dtype=float).reshape(-1, 4)
+        for name, value in checked.items():
+            object.__setattr__(self, name, value)
+
+    @property
+    def spacing(self) -> float:
+        """Grid spacing along X, m."""
+        return float(self.x[1] - self.x[0])
+
+    @property
+    def X(self) -> np.ndarray:
+        """(ny, nx) X of every node."""
+        return np.broadcast_to(self.x[None, :], self.surface.shape).copy()
+
+    @property
+    def Y(self) -> np.ndarray:
+        """(ny, nx) Y of every node."""
+        return np.broadcast_to(self.y[:, None], self.surface.shape).copy()
+
+    @property
+    def extent(self) -> tuple:
+        """(X_min, X_max, Y_min, Y_max) of the grid, m (matplotlib's ``extent`` order)."""
+        return float(self.x[0]), float(self.x[-1]), float(self.y[0]), float(self.y[-1])
+
+    def surface_at(self, X, Y) -> np.ndarray:
+        """DSM height at (X, Y) on the rendered triangulation (NaN outside the grid)."""
+        return _tri_interpolate(self.x, self.y, self.surface, X, Y, "surface_at")
+
+    def ground_at(self, X, Y) -> np.ndarray:
+        """DTM height at (X, Y) (NaN outside the grid)."""
+        return _tri_interpolate(self.x, self.y, self.ground, X, Y, "ground_at")
+
+    def albedo_at(self, X, Y) -> np.ndarray:
+        """Texture at (X, Y), piecewise linear like the surface (NaN outside the grid)."""
+        return _tri_interpolate(self.x, self.y, self.albedo, X, Y, "albedo_at")
+
+    def discontinuity_distance(self, step: float = 1.0) -> np.ndarray:
+        """(ny, nx) distance (m) of every node from the nearest height step larger than ``step`` m
+        between neighbouring nodes (building walls, tree edges): mask test areas with it."""
+        from scipy.ndimage import distance_transform_edt
+        s = self.surface
+        edge = np.zeros(s.shape, bool)
+        dzx = np.abs(np.diff(s, axis=1)) > step
+        dzy = np.abs(np.diff(s, axis=0)) > step
+        edge[:, :-1] |= dzx
+        edge[:, 1:] |= dzx
+        edge[:-1, :] |= dzy
+        edge[1:, :] |= dzy
+        if not edge.any():
+            return np.full(s.shape, np.inf)
+        return distance_transform_edt(~edge) * self.spacing
+
+    def __repr__(self) -> str:
+        return (f"TerrainScene({len(self.y)} × {len(self.x)} nodes, spacing {self.spacing:.1f} m, "
+                f"{len(self.footprints)} buildings, {self._n_trees} trees)")
+
+    @property
+    def _n_trees(self) -> int:
+        from scipy.ndimage import label
+        return int(label(self.trees)[1])
+
+
+def terrain_scene(extent=200.0, spacing: float = 0.5, *, base_height: float = 100.0, relief: float = 10.0,
+                  relief_scale: float = 60.0, n_buildings: int = 6, building_size=(10.0, 30.0),
+                  building_height=(6.0, 20.0), n_trees: int = 0, tree_height=(4.0, 10.0), tree_radius=(2.0, 4.0),
+                  texture_scale: float = 1.5, texture_contrast: float = 0.18, seed: int = 0) -> TerrainScene:
+    """A seeded synthetic scene: rolling ground, flat-roofed buildings, optional trees, a random texture.
+
+    Ground: ``base_height`` plus smooth random relief (Gaussian-filtered noise of correlation
+    length ``relief_scale``, scaled to a peak-to-peak range of ``relief``). Buildings:
+    axis-aligned rectangles (sides drawn from ``building_size``) with flat roofs ``building_height``
+    above the highest ground under them, at least 4 m apart and 5 m from the border (fewer are
+    placed if they do not fit). Trees: paraboloid canopies (``tree_radius``, ``tree_height``)
+    off the buildings. Texture: band-pass random noise (correlation ``texture_scale`` m, standard
+    deviation ``texture_contrast``, plus a grid-scale component) around 0.5, roofs shifted in brightness, canopies darker,
+    clipped to [0, 1]. The random numbers are drawn in a fixed order, so a scene is a function
+    of its arguments.
+
+    Parameters
+    ----------
+    extent : float or (float, float)
+        Size of the area along X and Y, m; the grid starts at X = Y = 0.
+    spacing : float
+        Grid spacing, m.
+    base_height, relief, relief_scale : float
+        Mean ground height, peak-to-peak relief and its correlation length, m.
+    n_buildings : int
+        Buildings to place (≥ 0).
+    building_size, building_height : (float, float)
+        Ranges of the footprint sides and of the heights above ground, m.
+    n_trees : int
+        Trees to place (≥ 0).
+    tree_height, tree_radius : (float, float)
+        Ranges of the canopy height and radius, m.
+    texture_scale, texture_contrast : float
+        Correlation length of the texture (m) and its standard deviation.
+    seed : int
+        Seed.
+
+    Returns
+    -------
+    TerrainScene
+
+    Raises
+    ------
+    InputError
+        NaN/inf or non-positive sizes, ranges with low > high, negative counts, a grid with fewer
+        than 3 × 3 nodes.
+
+    References
+    ----------
+    Chibunichev (2022), §6.1–6.3 and §6.6–6.7: the DSM (surface with buildings and vegetation)
+    and the DTM (bare earth) the algorithms there estimate.
+
+    Examples
+    --------
+    >>> from photolib.synthetic import terrain_scene
+    >>> sc = terrain_scene(extent=(100.0, 80.0), spacing=1.0, n_buildings=2, n_trees=3, seed=1)
+    >>> sc.surface.shape, len(sc.footprints), bool(sc.buildings.any()), bool(sc.trees.any())
+    ((81, 101), 2, True, True)
+    """
+    if np.ndim(extent) > 1 or np.size(extent) not in (1, 2):
+        raise InputError(f"extent must be one size or (size_x, size_y), got {extent!r}")
+    ext = np.broadcast_to(np.asarray(extent, dtype=object).ravel(), (2,))
+    wx, wy = (_finite(v, "extent", positive=True) for v in ext)
+    spacing = _finite(spacing, "spacing", positive=True)
+    base_height = _finite(base_height, "base_height")
+    relief = _finite(relief, "relief", nonnegative=True)
+    relief_scale = _finite(relief_scale, "relief_scale", positive=True)
+    n_buildings = _count(n_buildings, "n_buildings", 0)
+    n_trees = _count(n_trees, "n_trees", 0)
+    bs = _pair_range(building_size, "building_size")
+    bh = _pair_range(building_height, "building_height")
+    th = _pair_range(tree_height, "tree_height")
+    tr = _pair_range(tree_radius, "tree_radius")
+    texture_scale = _finite(texture_scale, "texture_scale", positive=True)
+    texture_contrast = _finite(texture_contrast, "texture_contrast", nonnegative=True)
+    seed = _count(seed, "seed", 0)
+    nx, ny = int(round(wx / spacing)) + 1, int(round(wy / spacing)) + 1
+    if nx < 3 or ny < 3:
+        raise InputError(f"the grid would have {ny} × {nx} nodes: make the extent larger or the spacing smaller")
+    x, y = np.arange(nx) * spacing, np.arange(ny) * spacing
+    rng = np.random.default_rng(seed)
+    # ground
+    g = _smooth_noise(rng, (ny, nx), relief_scale / spacing)
+    g = (g - g.min()) / max(g.max() - g.min(), 1e-12) - 0.5
+    ground = base_height + relief * g
+    surface = ground.copy()
+    X, Y = np.meshgrid(x, y)
+    # buildings
+    margin, gap = 5.0, 4.0
+    boxes = []
+    for _ in range(200 * max(n_buildings, 1)):
+        if len(boxes) >= n_buildings:
+            break
+        sx, sy = rng.uniform(*bs, 2)
+        x0 = rng.uniform(margin, max(margin, wx - margin - sx))
+        y0 = rng.uniform(margin, max(margin, wy - margin - sy))
+        box = (x0, x0 + sx, y0, y0 + sy)
+        if box[1] > wx - margin + 1e-9 or box[3] > wy - margin + 1e-9:
+            continue
+        if any(box[0] < b[1] + gap and b[0] < box[1] + gap and box[2] < b[3] + gap and b[2] < box[3] + gap
+               for b in boxes):
+            continue
+        boxes.append(box)
+    buildings = np.zeros((ny, nx), bool)
+    heights = rng.uniform(*bh, len(boxes))
+    roof_shift = rng.uniform(-0.2, 0.2, len(boxes))
+    for (bx0, bx1, by0, by1), h in zip(boxes, heights):
+        m = (X >= bx0) & (X <= bx1) & (Y >= by0) & (Y <= by1)
+        if not m.any():
+            continue
+        surface[m] = ground[m].max() + h
+        buildings |= m
+    # trees
+    trees = np.zeros((ny, nx), bool)
+    canopy = np.zeros((ny, nx))
+    placed = 0
+    for _ in range(50 * max(n_trees, 1)):
+        if placed >= n_trees:
+            break
+        r, h = rng.uniform(*tr), rng.uniform(*th)
+        cx, cy = rng.uniform(0, wx), rng.uniform(0, wy)
+        d2 = ((X - cx) ** 2 + (Y - cy) ** 2) / r ** 2
+        m = d2 < 1
+        if not m.any() or np.any(buildings[((X - cx) ** 2 + (Y - cy) ** 2) < (r + gap / 2) ** 2]):
+            continue
+        canopy = np.maximum(canopy, np.where(m, h * (1 - d2), 0.0))
+        placed += 1
+    trees = canopy > 0.3
+    surface = np.where(buildings, surface, ground + canopy)
+    # texture
+    tex = 0.5 * _smooth_noise(rng, (ny, nx), 0.7) \
+        + 0.7 * _smooth_noise(rng, (ny, nx), texture_scale / spacing) \
+        + 0.5 * _smooth_noise(rng, (ny, nx), 3 * texture_scale / spacing)
+    albedo = 0.5 + texture_contrast * tex / max(tex.std(), 1e-12)
+    for (bx0, bx1, by0, by1), s in zip(boxes, roof_shift):
+        m = (X >= bx0) & (X <= bx1) & (Y >= by0) & (Y <= by1)
+        albedo[m] += s
+    albedo[trees] -= 0.15
+    albedo = np.clip(albedo, 0.0, 1.0)
+    return TerrainScene(x, y, ground, surface, buildings, trees, albedo,
+                        np.array(boxes, dtype=float).reshape(-1, 4), seed)
+
+
+def pixel_to_image(col, row, shape, pixel_size: float):
+    """Image coordinates x, y (mm) of pixel positions of a frame of ``shape`` = (rows, cols).
+
+    The frame convention of the renderer: pixel centres at integer (col, row) with row 0 at the
+    top (``img[row, col]``), the fiducial centre (origin of x, y) at the centre of the frame,
+    x to the right and y up: x = (col − (cols − 1)/2)·Δ, y = ((rows − 1)/2 − row)·Δ.
+
+    Parameters
+    ----------
+    col, row : float or array
+        Column and row positions (fractional allowed).
+    shape : (int, int)
+        Rows and columns of the frame.
+    pixel_size : float
+        Δ, mm.
+
+    Returns
+    -------
+    x, y : float or ndarray
+        Image coordinates, mm (floats for scalar input).
+
+    Raises
+    ------
+    InputError
+        NaN/inf, a bad shape, Δ ≤ 0.
+
+    References
+    ----------
+    Chibunichev (2022), §1.10, (1.10.3)–(1.10.5) (pixel → physical coordinates, Fig. 1.19).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import pixel_to_image
+    >>> pixel_to_image(0.0, 0.0, (3, 5), 0.01)
+    (-0.02, 0.01)
+    """
+    h, w = _frame_shape(shape)
+    d = _finite(pixel_size, "pixel_size", positive=True)
+    col, row = _finite_array(col, "col"), _finite_array(row, "row")
+    try:
+        col, row = np.broadcast_arrays(col, row)
+    except ValueError:
+        raise InputError(f"col and row have shapes {col.shape} and {row.shape} that do not broadcast") from None
+    x, y = (col - (w - 1) / 2) * d, ((h - 1) / 2 - row) * d
+    return (float(x), float(y)) if np.ndim(x) == 0 else (x, y)
+
+
+def image_to_pixel(xy, shape, pixel_size: float) -> np.ndarray:
+    """Pixel positions (col, row) of image coordinates (mm): the inverse of :func:`pixel_to_image`.
+
+    Parameters
+    ----------
+    xy : (n, 2) array
+        Image coordinates x, y, mm.
+    shape : (int, int)
+        Rows and columns of the frame.
+    pixel_size : float
+        Δ, mm.
+
+    Returns
+    -------
+    (n, 2) ndarray
+        col, row (centre of ``img[r, c]`` at (c, r)).
+
+    Raises
+    ------
+    InputError
+        NaN/inf, wrong shapes, Δ ≤ 0.
+
+    References
+    ----------
+    Chibunichev (2022), §1.10, (1.10.3)–(1.10.5).
+
+    Examples
+    --------
+    >>> from photolib.synthetic import image_to_pixel
+    >>> image_to_pixel([[-0.02, 0.01]], (3, 5), 0.01)
+    array([[0., 0.]])
+    """
+    from .camera import as_points
+    h, w = _frame_shape(shape)
+    d = _finite(pixel_size, "pixel_size", positive=True)
+    xy = as_points(xy, 2, "image coordinates")
+    return np.column_stack([xy[:, 0] / d + (w - 1) / 2, (h - 1) / 2 - xy[:, 1] / d])
+
+
+def _finite_array(value, what):
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be numbers") from None
+    if not np.all(np.isfinite(arr)):
+        raise InputError(f"{what} contains NaN or inf")
+    return arr
+
+
+def _frame_shape(shape) -> tuple[int, int]:
+    try:
+        h, w = shape
+    except (TypeError, ValueError):
+        raise InputError(f"shape must be (rows, cols), got {shape!r}") from None
+    return _count(h, "image rows", 2), _count(w, "image columns", 2)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Rendering:
+    """An image rendered by :func:`render_image`, with the object point seen by every pixel.
+
+    Attributes
+    ----------
+    image : (rows, cols) float array
+        Brightness (the scene's albedo, plus noise if asked); ``background`` where nothing is seen.
+    depth : (rows, cols) float array
+        Distance from the projection centre to the surface point seen, m (NaN: nothing seen).
+    XYZ : (rows, cols, 3) float array
+        Object coordinates of the surface point seen by each pixel centre, m (NaN: nothing).
+    visible : (rows, cols) bool array
+        Pixels that see the scene.
+    io : InteriorOrientation
+    eo : ExteriorOrientation
+    pixel_size : float
+        Δ, mm (pixel ↔ mm conversion: :func:`pixel_to_image`, :func:`image_to_pixel`).
+
+    References
+    ----------
+    Chibunichev (2022), §1.4, (1.4.12) (projection); §1.10 (pixel coordinates).
+
+    Examples
+    --------
+    >>> from photolib.camera import InteriorOrientation, ExteriorOrientation
+    >>> from photolib.synthetic import terrain_scene, render_image
+    >>> sc = terrain_scene(extent=40.0, spacing=1.0, n_buildings=0, seed=0)
+    >>> r = render_image(sc, InteriorOrientation(50.0), ExteriorOrientation(20.0, 20.0, 300.0), (16, 16),
+    ...                  pixel_size=0.05)
+    >>> r
+    Rendering(16 × 16 pixels, 256 see the scene, Δ = 0.050 mm)
+    """
+
+    image: np.ndarray
+    depth: np.ndarray
+    XYZ: np.ndarray
+    visible: np.ndarray
+    io: InteriorOrientation
+    eo: object
+    pixel_size: float
+
+    @property
+    def shape(self) -> tuple:
+        """(rows, cols)."""
+        return self.image.shape
+
+    def pixel_to_image(self, col, row):
+        """x, y (mm) of pixel positions of this frame (see :func:`pixel_to_image`)."""
+        return pixel_to_image(col, row, self.shape, self.pixel_size)
+
+    def image_to_pixel(self, xy):
+        """(col, row) of image coordinates (mm) of this frame (see :func:`image_to_pixel`)."""
+        return image_to_pixel(xy, self.shape, self.pixel_size)
+
+    def project(self, XYZ) -> np.ndarray:
+        """(n, 2) pixel positions (col, row) of object points by (1.4.12) (no occlusion test)."""
+        from .single_image import project
+        return self.image_to_pixel(project(XYZ, self.eo, self.io))
+
+    def __repr__(self) -> str:
+        h, w = self.shape
+        return (f"Rendering({h} × {w} pixels, {int(self.visible.sum())} see the scene, "
+                f"Δ = {self.pixel_size:.3f} mm)")
+
+
+def render_image(scene: TerrainScene, interior, exterior, shape, *, pixel_size: float = 0.01,
+                 supersample: int = 2, noise: float = 0.0, background: float = 0.0, seed: int = 0,
+                 ignore_distortion: bool = False) -> Rendering:
+    """Render the textured surface of a scene into a frame camera with a z-buffer.
+
+    The surface is the scene's triangulated DSM (see :class:`TerrainScene`); the camera follows
+    Chapter 1: a pixel at (col, row) has image coordinates x, y of :func:`pixel_to_image`
+    (frame centre = fiducial centre) and the ray X = S + t·A·(x − x₀, y − y₀, −f) of (1.4.5);
+    vertices are projected by the collinearity equations (1.4.12). For each pixel centre the
+    nearest intersection of its ray with the surface is found exactly (ray–plane intersection
+    with the triangle that covers it), giving ``XYZ`` and ``depth``; the brightness is the
+    albedo at the surface point, averaged over ``supersample``² sub-pixel rays (anti-aliasing),
+    plus Gaussian noise. Triangles with a vertex behind the camera are not drawn.
+
+    Parameters
+    ----------
+    scene : TerrainScene
+        From :func:`terrain_scene`.
+    interior : InteriorOrientation
+        f, x₀, y₀ in mm (distortion is not rendered: see ``ignore_distortion``).
+    exterior : ExteriorOrientation
+        Projection centre and angles (radians).
+    shape : (int, int)
+        Rows and columns of the frame.
+    pixel_size : float
+        Δ, mm.
+    supersample : int
+        Sub-pixel rays per side for the brightness (1: the pixel centre only).
+    noise : float
+        Standard deviation of Gaussian noise added to the image (brightness units).
+    background : float
+        Brightness of pixels that see nothing.
+    seed : int
+        Seed of the noise.
+    ignore_distortion : bool
+        Render a camera with distortion coefficients as if it had none (otherwise InputError).
+
+    Returns
+    -------
+    Rendering
+        ``image``, ``depth``, ``XYZ``, ``visible`` and the orientation.
+
+    Raises
+    ------
+    InputError
+        Wrong types, a bad shape or pixel size, a camera with distortion, a projection centre
+        below the surface of the scene.
+    PointBehindCameraError
+        The whole scene is behind the camera.
+    DegenerateGeometryError
+        The scene is entirely outside the frame.
+
+    References
+    ----------
+    Chibunichev (2022), §1.4, eqs. (1.4.5), (1.4.10)–(1.4.12); §1.10 (pixel coordinates).
+
+    Examples
+    --------
+    >>> from photolib.camera import InteriorOrientation, ExteriorOrientation
+    >>> from photolib.synthetic import terrain_scene, render_image
+    >>> sc = terrain_scene(extent=60.0, spacing=0.5, n_buildings=1, seed=2)
+    >>> eo = ExteriorOrientation(30.0, 30.0, 400.0)
+    >>> r = render_image(sc, InteriorOrientation(50.0), eo, (32, 32), pixel_size=0.05)
+    >>> r.image.shape, r.XYZ.shape, bool(r.visible.all())
+    ((32, 32), (32, 32, 3), True)
+    >>> c, rw = 16, 16
+    >>> bool(abs(r.XYZ[rw, c, 2] - sc.surface_at(r.XYZ[rw, c, 0], r.XYZ[rw, c, 1])) < 1e-9)
+    True
+    """
+    from .camera import ExteriorOrientation, _expect
+    from .single_image import camera_coordinates
+    _expect(scene, TerrainScene, "scene")
+    _expect(interior, InteriorOrientation, "interior")
+    _expect(exterior, ExteriorOrientation, "exterior")
+    h, w = _frame_shape(shape)
+    d = _finite(pixel_size, "pixel_size", positive=True)
+    k = _count(supersample, "supersample", 1)
+    noise = _finite(noise, "noise", nonnegative=True)
+    background = _finite(background, "background")
+    seed = _count(seed, "seed", 0)
+    if interior.has_distortion and not ignore_distortion:
+        raise InputError("the renderer draws distortion-free images: pass ignore_distortion=True to render a "
+                         "camera with distortion coefficients as an ideal one")
+    S = exterior.center
+    z_under = scene.surface_at(S[0], S[1])
+    if np.isfinite(z_under) and S[2] <= z_under:
+        raise InputError(f"the projection centre (Z = {S[2]:.2f} m) is below the surface of the scene "
+                         f"({float(z_under):.2f} m)")
+    P = np.stack([scene.X, scene.Y, scene.surface], axis=-1)
+    star = camera_coordinates(P.reshape(-1, 3), exterior).reshape(P.shape)
+    front = star[..., 2] < -1e-9
+    if not front.any():
+        raise PointBehindCameraError("the whole scene is behind the camera (Z* >= 0 for every node)")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        zs = np.where(front, star[..., 2], -1.0)
+        xm = interior.x0 - interior.f * star[..., 0] / zs
+        ym = interior.y0 - interior.f * star[..., 1] / zs
+    A = np.ascontiguousarray(exterior.matrix)
+    from . import _render_kernels as kern
+
+    def trace(hh, ww, dd):
+        col = xm / dd + (ww - 1) / 2
+        row = (hh - 1) / 2 - ym / dd
+        col, row = np.where(front, col, 0.0), np.where(front, row, 0.0)
+        t, _ = kern.rasterise(col, row, front, P, S, A, float(interior.x0), float(interior.y0),
+                              float(interior.f), dd, hh, ww)
+        hit = np.isfinite(t)
+        cc, rr = np.meshgrid(np.arange(ww, dtype=float), np.arange(hh, dtype=float))
+        x = (cc - (ww - 1) / 2) * dd - interior.x0
+        y = ((hh - 1) / 2 - rr) * dd - interior.y0
+        ray = np.stack([x, y, np.full_like(x, -interior.f)], axis=-1) @ A.T
+        XYZ = np.where(hit[..., None], S + np.where(hit, t, 0.0)[..., None] * ray, np.nan)
+        dist = np.where(hit, np.where(hit, t, 0.0) * np.linalg.norm(ray, axis=-1), np.nan)
+        return hit, XYZ, dist
+
+    hit, XYZ, depth = trace(h, w, d)
+    if k == 1:
+        value = np.where(hit, scene.albedo_at(np.nan_to_num(XYZ[..., 0]), np.nan_to_num(XYZ[..., 1])), background)
+    else:
+        hit_f, XYZ_f, _ = trace(h * k, w * k, d / k)
+        val = np.where(hit_f, scene.albedo_at(np.nan_to_num(XYZ_f[..., 0]), np.nan_to_num(XYZ_f[..., 1])), np.nan)
+        val = np.where(np.isfinite(val), val, background)
+        value = val.reshape(h, k, w, k).mean(axis=(1, 3))
+        value = np.where(hit | hit_f.reshape(h, k, w, k).any(axis=(1, 3)), value, background)
+    if not hit.any():
+        raise DegenerateGeometryError("the scene lies entirely outside the frame")
+    if noise > 0:
+        value = value + np.random.default_rng(seed).normal(0.0, noise, value.shape)
+    return Rendering(value.astype(float), depth, XYZ, hit, interior, exterior, d)
