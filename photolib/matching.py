@@ -204,8 +204,6 @@ def correlation_surface(template, search, centred: bool = True):
     >>> R.shape, [int(i) for i in np.unravel_index(np.nanargmax(R), R.shape)], round(float(np.nanmax(R)), 6)
     ((16, 14), [5, 8], 1.0)
     """
-    from scipy.signal import correlate
-
     t = _array(template, "template", ndim=2, min_size=2)
     s = _array(search, "search area", ndim=2, min_size=2)
     h, w = t.shape
@@ -219,7 +217,7 @@ def correlation_surface(template, search, centred: bool = True):
     scale = max(1.0, float(np.max(np.abs(t))))
     if tt <= 1e-18 * scale ** 2 * n or (centred and _flat(template, 0.0)):
         raise DegenerateGeometryError("the template has no texture: the correlation surface is undefined")
-    num = correlate(s, t, mode="valid", method="auto")
+    num = _correlate_valid(s, t)
     s1 = _box_sums(s, h, w)
     s2 = _box_sums(s * s, h, w)
     ss = s2 - s1 * s1 / n if centred else s2
@@ -227,6 +225,25 @@ def correlation_surface(template, search, centred: bool = True):
     with np.errstate(invalid="ignore", divide="ignore"):
         R = num / np.sqrt(tt * np.where(ss > 1e-10 * sscale, ss, np.nan))
     return np.clip(R, -1.0, 1.0)
+
+
+def _correlate_valid(search, template):
+    """Σ template·window for every window position ("valid" cross-correlation, no flip).
+
+    Directly over the sliding windows when that is small, else by FFT (scipy.fft; scipy.signal is
+    not imported: with SciPy ≥ 1.16 it pulls in scipy.stats and costs seconds on first use).
+    """
+    h, w = template.shape
+    rows, cols = search.shape[0] - h + 1, search.shape[1] - w + 1
+    if rows * cols * h * w <= 4_000_000:
+        windows = np.lib.stride_tricks.sliding_window_view(search, template.shape)
+        return np.einsum("ijkl,kl->ij", windows, template)
+    from scipy import fft
+    shape = [fft.next_fast_len(search.shape[0] + h - 1, real=True),
+             fft.next_fast_len(search.shape[1] + w - 1, real=True)]
+    product = fft.rfft2(search, shape) * fft.rfft2(template[::-1, ::-1], shape)
+    full = fft.irfft2(product, shape)
+    return full[h - 1:h - 1 + rows, w - 1:w - 1 + cols]
 
 
 def parabola_vertex(values, offsets=None):

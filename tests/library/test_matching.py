@@ -215,3 +215,15 @@ def test_lsm_textureless_and_one_directional_texture():
     stripes = np.tile(np.sin(np.arange(120) * 0.5) * 50 + 100, (120, 1))   # no y gradient at all
     with pytest.raises(DegenerateGeometryError):
         M.lsm_shift(stripes, stripes, (60, 60), approx=(60.3, 60), half_window=7)
+
+
+@pytest.mark.parametrize("search, template", [((40, 50), (7, 9)), ((300, 280), (31, 25))])
+def test_valid_correlation_equals_scipy_signal_in_both_branches(search, template):
+    """The direct (small) and FFT (large) branches of the correlation sums = scipy.signal.correlate."""
+    from scipy.signal import correlate
+
+    from photolib.matching import _correlate_valid
+    rng = np.random.default_rng(7)
+    s, t = rng.normal(size=search), rng.normal(size=template)
+    np.testing.assert_allclose(_correlate_valid(s, t), correlate(s, t, mode="valid", method="direct"),
+                               rtol=1e-10, atol=1e-10)
