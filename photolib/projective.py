@@ -1580,28 +1580,17 @@ def relative_orientation_projective(xy1, xy2, io1: InteriorOrientation, io2: Int
     return decompose_essential(E, xy1, xy2, io1, io2, order, system=system)
 
 
-@dataclass(repr=False)
-class RansacResult:
-    """F estimated robustly: the matrix (layout x2Fx1 unless asked otherwise), the inlier mask, trials made."""
-
-    F: np.ndarray
-    inliers: np.ndarray
-    trials: int
-
-    def __repr__(self) -> str:
-        return f"RansacResult: {int(self.inliers.sum())}/{len(self.inliers)} inliers after {self.trials} samples"
-
-
 def ransac_fundamental(xy1, xy2, threshold: float, rng=0, max_trials: int = 2000,
-                       confidence: float = 0.999, layout: str = "x2Fx1") -> RansacResult:
+                       confidence: float = 0.999, layout: str = "x2Fx1"):
     """F from correspondences with outliers: RANSAC over 8-point samples, Sampson distance < threshold.
 
-    The final F is the normalised 8-point solution on all inliers, whose set is then recomputed.
+    Chapter 4's name for :func:`photolib.ransac.ransac_fundamental_matrix` (the one RANSAC loop of
+    the library, §5.10), with the layout of F chosen here.
 
     Parameters
     ----------
     xy1, xy2 : (n, 2) arrays
-        Correspondences, n ≥ 8.
+        Correspondences, n ≥ 9.
     threshold : float
         Sampson distance (image units) below which a match is an inlier.
     rng : int or numpy.random.Generator
@@ -1615,15 +1604,17 @@ def ransac_fundamental(xy1, xy2, threshold: float, rng=0, max_trials: int = 2000
 
     Returns
     -------
-    RansacResult
-        F, the inlier mask, the number of trials.
+    photolib.ransac.RansacResult
+        ``model`` = F in the requested layout, the inlier mask, the number of samples drawn.
 
     Raises
     ------
     InputError
-        Fewer than 8 points, a bad threshold or confidence, NaN.
+        Fewer than 9 points, a bad threshold or confidence, NaN.
     DegenerateGeometryError
-        No epipolar geometry supported by 8 points.
+        Every sample degenerate.
+    ConvergenceError
+        No consensus.
 
     References
     ----------
@@ -1639,35 +1630,12 @@ def ransac_fundamental(xy1, xy2, threshold: float, rng=0, max_trials: int = 2000
     (27, False)
     """
     _check_layout(layout)
-    xy1, xy2 = _pair(xy1, xy2, 8, "RANSAC for the fundamental matrix")
-    if not (np.isfinite(threshold) and threshold > 0):
-        raise InputError(f"threshold must be positive, got {threshold}")
-    if not 0 < confidence < 1:
-        raise InputError(f"confidence must lie in (0, 1), got {confidence}")
-    rng = rng if isinstance(rng, np.random.Generator) else np.random.default_rng(rng)
-    n = len(xy1)
-    best_mask, best_count = None, 0
-    needed, trials = max_trials, 0
-    while trials < min(needed, max_trials):
-        trials += 1
-        sample = rng.choice(n, 8, replace=False)
-        try:
-            F = fundamental_matrix(xy1[sample], xy2[sample])
-        except DegenerateGeometryError:
-            continue
-        mask = sampson_distance(F, xy1, xy2) < threshold
-        count = int(mask.sum())
-        if count > best_count:
-            best_mask, best_count = mask, count
-            eps = 1 - count / n
-            needed = 0 if eps == 0 else int(np.ceil(np.log(1 - confidence) / np.log(1 - (1 - eps) ** 8)))
-    if best_count < 8:
-        raise DegenerateGeometryError(f"RANSAC found no epipolar geometry supported by 8 points in {trials} trials")
-    F = fundamental_matrix(xy1[best_mask], xy2[best_mask])
-    mask = sampson_distance(F, xy1, xy2) < threshold
-    if mask.sum() >= 8:
-        F = fundamental_matrix(xy1[mask], xy2[mask])
-    return RansacResult(_layout(F, layout), mask, trials)
+    from dataclasses import replace
+
+    from .ransac import ransac_fundamental_matrix         # the one RANSAC loop (§5.10)
+    result = ransac_fundamental_matrix(xy1, xy2, threshold, confidence=confidence, max_iterations=max_trials,
+                                       rng=rng)
+    return replace(result, model=_layout(result.model, layout))
 
 
 # --- plane-to-plane homography -------------------------------------------------------------------------

@@ -341,8 +341,8 @@ def test_ransac_rejects_outliers():
     truth[outliers] = False
     assert not np.any(res.inliers[outliers]) and res.inliers[truth].mean() > 0.95
     again = pj.ransac_fundamental(xy1, xy2, threshold=0.03, rng=0)
-    assert np.array_equal(again.F, res.F)
-    assert np.median(pj.sampson_distance(res.F, xy1[truth], xy2[truth])) < 0.01
+    assert np.array_equal(again.model, res.model)
+    assert np.median(pj.sampson_distance(res.model, xy1[truth], xy2[truth])) < 0.01
 
 
 def test_fundamental_degenerate_and_bad_input():

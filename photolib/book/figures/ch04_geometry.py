@@ -210,7 +210,7 @@ def ransac_matches(xy1, xy2, result, outliers, threshold):
     """RANSAC for F: image-2 points with their distance to the epipolar line, and Sampson distances."""
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.4))
     inl = result.inliers
-    lines = projective.epipolar_lines(result.F, xy1, image=2)          # unit normals (a, b)
+    lines = projective.epipolar_lines(result.model, xy1, image=2)          # unit normals (a, b)
     off = np.einsum("ni,ni->n", lines, np.column_stack([xy2, np.ones(len(xy2))]))
     foot = xy2 - off[:, None] * lines[:, :2]
     for k in np.flatnonzero(~inl):
@@ -222,7 +222,7 @@ def ransac_matches(xy1, xy2, result, outliers, threshold):
     a1.set_ylabel("y₂, mm")
     a1.set_title("image 2: rejected points and their\ndistance to the epipolar line l₂ = F r₁")
     a1.legend(fontsize=8, loc="lower left")
-    dist = projective.sampson_distance(result.F, xy1, xy2)
+    dist = projective.sampson_distance(result.model, xy1, xy2)
     truth = np.ones(len(xy1), bool)
     truth[outliers] = False
     bins = np.logspace(np.log10(max(dist.min(), 1e-5)), np.log10(dist.max() * 1.1), 40)
@@ -233,7 +233,7 @@ def ransac_matches(xy1, xy2, result, outliers, threshold):
     a2.set_xlabel("Sampson distance to the final F, mm")
     a2.set_ylabel("number of matches")
     a2.legend(fontsize=8)
-    a2.set_title(f"RANSAC: {result.trials} samples of 8 points")
+    a2.set_title(f"RANSAC: {result.iterations} samples of 8 points")
     fig.tight_layout()
     return _done(fig)
 
