@@ -21,6 +21,16 @@ so ``import photolib`` stays light); the modules mirror the book's chapters:
 * :mod:`photolib.synthetic` — seeded synthetic scenes, pairs and blocks with ground truth
 * :mod:`photolib.projective` — DLT, projective intersection, fundamental and essential matrices,
   homography (Chapter 4)
+* :mod:`photolib.matching` — correlation and least-squares matching (§5.1–§5.4)
+* :mod:`photolib.features` — gradients, interest points, descriptors (§5.5, §5.7–§5.9)
+* :mod:`photolib.epipolar` — pyramids, epipolar lines, resampling to the normal case (§5.6)
+* :mod:`photolib.ransac` — RANSAC for relative orientation and the fundamental matrix (§5.10)
+* :mod:`photolib.targets` — automatic measurement of targets (§5.11)
+* :mod:`photolib.surface` — surface models by correlation and vertical-line search (§6.1–§6.3)
+* :mod:`photolib.sgm` — semi-global matching in image and object space (§6.4–§6.5)
+* :mod:`photolib.dtm` — TIN, grids, contours, DSM → DTM (§6.6–§6.7)
+* :mod:`photolib.mrf` — terrain from a stereo pair by a Markov random field (Baikalova et al.)
+* :mod:`photolib.datasets` — where the real data is, and readers for the stereo benchmarks
 * :mod:`photolib.conventions` — conversions to Western, Hanzl's and OpenCV's conventions
   (Appendix A)
 * :mod:`photolib.lsq` — the one least-squares engine, (1.8.5)–(1.8.10), with the block
@@ -73,6 +83,21 @@ _ENTRY_POINTS = {
     "decompose_essential": "projective",
     "homography_dlt": "projective",
     "homography_lsq": "projective",
+    # matching and interest points (Chapter 5)
+    "match_point": "matching",
+    "lsm_affine": "matching",
+    "interest_points": "features",
+    "match_descriptors": "features",
+    "ransac": "ransac",
+    "rectify_pair": "epipolar",
+    "circle_fit": "targets",
+    # surface and terrain models (Chapter 6)
+    "dsm_vertical_line": "surface",
+    "semi_global_matching": "sgm",
+    "voxel_sgm": "sgm",
+    "delaunay_tin": "dtm",
+    "grid_from_tin": "dtm",
+    "filter_dsm": "dtm",
     # the engine
     "gauss_newton": "lsq",
     # errors
@@ -85,7 +110,8 @@ _ENTRY_POINTS = {
 
 _MODULES = ("rotation", "camera", "single_image", "resection", "digital", "interior", "scanners",
             "image_pair", "gnss_centres", "strip_triangulation", "bundle", "triangulation_layouts",
-            "synthetic", "projective", "conventions", "lsq", "derivations", "errors")
+            "synthetic", "projective", "matching", "features", "epipolar", "ransac", "targets", "surface", "sgm",
+            "dtm", "mrf", "datasets", "conventions", "lsq", "derivations", "errors")
 
 __all__ = ["__version__", *_ENTRY_POINTS, *_MODULES]
 
