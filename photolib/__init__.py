@@ -88,7 +88,6 @@ _ENTRY_POINTS = {
     "lsm_affine": "matching",
     "interest_points": "features",
     "match_descriptors": "features",
-    "ransac": "ransac",
     "rectify_pair": "epipolar",
     "circle_fit": "targets",
     # surface and terrain models (Chapter 6)

@@ -37,3 +37,8 @@ def test_importing_the_package_loads_neither_sympy_nor_scipy():
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "[]"
+
+
+def test_no_entry_point_shadows_a_module():
+    """`from photolib import <module>` must give the module, so no entry point may share its name."""
+    assert not set(photolib._ENTRY_POINTS) & set(photolib._MODULES)
