@@ -1970,7 +1970,7 @@ def render_image(scene: TerrainScene, interior, exterior, shape, *, pixel_size: 
     vertices are projected by the collinearity equations (1.4.12). For each pixel centre the
     nearest intersection of its ray with the surface is found exactly (ray–plane intersection
     with the triangle that covers it), giving ``XYZ`` and ``depth``; the brightness is the
-    albedo at the surface point, averaged over ``supersample``² sub-pixel rays (anti-aliasing),
+    albedo at the surface point, averaged over ``supersample ** 2`` sub-pixel rays (anti-aliasing),
     plus Gaussian noise. Triangles with a vertex behind the camera are not drawn.
 
     Parameters

@@ -56,6 +56,7 @@ def pyramid_levels(levels, title: str = "Image pyramid (Fig. 5.15): each level a
         ax.set_xticks([])
         ax.set_yticks([])
     fig.suptitle(title, fontsize=10)
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig
 
 
@@ -97,6 +98,7 @@ def coarse_to_fine(pyr_right, point, approx, match, search_radius: int, refine_r
             guess = np.rint(p_next + 2.0 * (np.array([xi, yi]) - p_l))
     fig.suptitle("Coarse-to-fine: prediction (circle), search area with windows (dashed), match (+)"
                  + (", truth (x)" if truth is not None else ""), fontsize=10)
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig
 
 
@@ -128,6 +130,7 @@ def epipolar_geometry(left, right, pixel_size: float, points1, lines, points2, x
     ax.legend(fontsize=8)
     if title:
         fig.suptitle(title, fontsize=10)
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig
 
 
@@ -151,6 +154,7 @@ def rectification(before, after, points_before, points_after, title: str = ""):
                 ax.plot(*p, "o", color=col, ms=5, mec="w")
     if title:
         fig.suptitle(title, fontsize=10)
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig
 
 
@@ -175,4 +179,5 @@ def three_images(images, pixel_size: float, points, lines13, lines23, intersecti
         axes[2].plot(*points[2][k], "+", color="k", ms=8)
     fig.suptitle("Three images (Fig. 5.18): intersection of two epipolar lines (circle) vs the true m₃ (+)",
                  fontsize=10)
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig

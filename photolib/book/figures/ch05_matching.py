@@ -53,6 +53,7 @@ def correlation_surfaces(cases, half_window: int):
         a2.set_title(f"sharpness −d²R/dx² = {sharp} /px²\n{verdict}", fontsize=9)
         a2.set(xlabel="offset from the maximum, px", ylabel="R", ylim=(-1.05, 1.05))
         a2.legend(fontsize=8, loc="lower left")
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig
 
 
@@ -137,6 +138,7 @@ def lsm_iterations(left, right, point, result, half_window: int, truth=None, tit
     ax.text(0, 1, "\n".join(lines), va="top", family="monospace", fontsize=9)
     if title:
         fig.suptitle(title)
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig
 
 
@@ -183,4 +185,5 @@ def target_fits(disc, disc_truth, centroid_xy, circle, plain_circle, cross, cros
             label=f"intersection: {np.hypot(cross_fit.x - cx, cross_fit.y - cy):.3f} px off")
     a2.set(xlim=(cx - 14, cx + 14), ylim=(cy + 14, cy - 14), title="Kadnichansky cross target")
     a2.legend(fontsize=7, loc="lower left")
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig

@@ -44,6 +44,7 @@ def town(scene, images, centres=None, frames=None):
         _img(axes[2 + k], images[k], f"image {k + 1}")
     for ax in axes[:2]:
         ax.set(xlabel="X, m", ylabel="Y, m")
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig
 
 
@@ -68,6 +69,7 @@ def epipolar_segment(left, right, point1, c, d, match, line=None, z_range=None):
     axes[2].set_xlim(mid[0] - half, mid[0] + half)
     axes[2].set_ylim(mid[1] + half, mid[1] - half)
     axes[2].legend(fontsize=8, loc="lower right")
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig
 
 
@@ -97,6 +99,7 @@ def vertical_line_search(stages, z_true=None, title: str = ""):
     axes[0].legend(fontsize=8)
     if title:
         fig.suptitle(title, fontsize=10)
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig
 
 
@@ -137,4 +140,5 @@ def dsm_comparison(X, Y, truth, results, labels, vmax_error: float = 2.0, choice
     for a in axes.ravel():
         if a.has_data():
             a.set(xlabel="X, m", ylabel="Y, m")
+    plt.close(fig)          # shown once, by the notebook cell that returns it
     return fig
