@@ -42,6 +42,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import _checks
 from .camera import ExteriorOrientation
 from .errors import DegenerateGeometryError, InputError
 
@@ -70,17 +71,13 @@ def _float_array(values, what: str, allow_nan: bool = False) -> np.ndarray:
 
 
 def _positive(value, what: str) -> float:
-    arr = _float_array(value, what)
-    if arr.ndim != 0 or not arr > 0:
-        raise InputError(f"{what} must be one positive number, got {value!r}")
-    return float(arr)
+    return _checks.positive_scalar(_float_array(value, what), value, what,
+                                   message="{name} must be one positive number, got {value!r}")
 
 
 def _nonnegative(value, what: str) -> float:
-    arr = _float_array(value, what)
-    if arr.ndim != 0 or not arr >= 0:
-        raise InputError(f"{what} must be one number ≥ 0, got {value!r}")
-    return float(arr)
+    return _checks.positive_scalar(_float_array(value, what), value, what, allow_zero=True,
+                                   message="{name} must be one number ≥ 0, got {value!r}")
 
 
 def _xy(values, what: str) -> np.ndarray:

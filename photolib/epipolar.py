@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import _checks
 from .camera import ExteriorOrientation, InteriorOrientation, _expect, as_points
 from .errors import DegenerateGeometryError, InputError, PointBehindCameraError
 
@@ -36,38 +37,22 @@ __all__ = ["pyramid", "PyramidMatch", "match_coarse_to_fine", "epipolar_ordinate
            "EpipolarPair", "rectify_pair", "epipolar_intersection"]
 
 
+_IMAGE_MESSAGES = {"type": "{name} must be an array of numbers, got {type}",
+                   "numeric": "{name} must be an array of numbers",
+                   "ndim": "{name} must be a 2-D (rows, cols) image, got shape {shape}",
+                   "small": "{name} is too small: {shape}"}
+
+
 def _image(value, name, min_size=2):
-    if isinstance(value, (str, bytes)):
-        raise InputError(f"{name} must be an array of numbers, got {type(value).__name__}")
-    try:
-        img = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be an array of numbers") from None
-    if img.ndim != 2:
-        raise InputError(f"{name} must be a 2-D (rows, cols) image, got shape {img.shape}")
-    if min(img.shape) < min_size:
-        raise InputError(f"{name} is too small: {img.shape}")
-    if not np.all(np.isfinite(img)):
-        raise InputError(f"{name} contains NaN or inf pixels")
-    return img
+    return _checks.image(value, name, min_size, messages=_IMAGE_MESSAGES, reject=(str, bytes))
 
 
 def _int(value, name, minimum):
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        raise InputError(f"{name} must be an integer, got {value!r}")
-    if value < minimum:
-        raise InputError(f"{name} must be at least {minimum}, got {value}")
-    return int(value)
+    return _checks.integer(value, name, minimum, message="{name} must be an integer, got {value!r}",
+                           too_small="{name} must be at least {minimum}, got {value}")
 
 
-def _number(value, name, positive=False):
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number, got {value!r}") from None
-    if not np.isfinite(v) or (positive and v <= 0):
-        raise InputError(f"{name} must be a finite{' positive' if positive else ''} number, got {value!r}")
-    return v
+_number = _checks.number
 
 
 # --- §5.6: image pyramid and coarse-to-fine matching --------------------------------------------------

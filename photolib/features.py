@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage as ndi
 
+from . import _checks
 from .errors import InputError
 
 __all__ = ["SOBEL_X", "SOBEL_Y", "PREWITT_X", "PREWITT_Y", "ROBERTS_X", "ROBERTS_Y", "FAST_CIRCLE",
@@ -74,23 +75,19 @@ FAST_CIRCLE = np.array([(0, -3), (1, -3), (2, -2), (3, -1), (3, 0), (3, 1), (2, 
 
 _BORDERS = ("zero", "constant", "nearest", "mirror", "reflect")
 _NP_PAD = {"constant": "constant", "nearest": "edge", "mirror": "reflect", "reflect": "symmetric"}
+_NON_NEGATIVE = "{name} must be a non-negative integer, got {value!r}"
+_POSITIVE_INT = "{name} must be a positive integer, got {value!r}"
 
 
 # --- input checks -----------------------------------------------------------------------------------
+_IMAGE_MESSAGES = {"type": "{name} must be a 2-D array of grey values, got {type}",
+                   "numeric": "{name} must be a 2-D array of grey values: {exc}",
+                   "ndim": "{name} must be a 2-D (grey) array, got {ndim} dimension(s) {shape}",
+                   "small": "{name} of shape {shape} is smaller than the {min_size}×{min_size} window"}
+
+
 def _image(img, what: str = "image", min_size: int = 1) -> np.ndarray:
-    if isinstance(img, (str, bytes)) or img is None:
-        raise InputError(f"{what} must be a 2-D array of grey values, got {type(img).__name__}")
-    try:
-        a = np.asarray(img, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"{what} must be a 2-D array of grey values: {exc}") from exc
-    if a.ndim != 2:
-        raise InputError(f"{what} must be a 2-D (grey) array, got {a.ndim} dimension(s) {a.shape}")
-    if a.shape[0] < min_size or a.shape[1] < min_size:
-        raise InputError(f"{what} of shape {a.shape} is smaller than the {min_size}×{min_size} window")
-    if not np.all(np.isfinite(a)):
-        raise InputError(f"{what} contains NaN or inf pixels")
-    return a
+    return _checks.image(img, what, min_size, messages=_IMAGE_MESSAGES)
 
 
 def _border(border: str) -> str:
@@ -99,22 +96,12 @@ def _border(border: str) -> str:
     return border
 
 
-def _odd_window(window, what="window", minimum=3) -> int:
-    if isinstance(window, bool) or not isinstance(window, (int, np.integer)):
-        raise InputError(f"{what} must be an odd integer ≥ {minimum}, got {window!r}")
-    if window < minimum or window % 2 == 0:
-        raise InputError(f"{what} must be an odd integer ≥ {minimum}, got {window}")
-    return int(window)
+_odd_window = _checks.odd_integer
 
 
 def _positive(value, what) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"{what} must be a positive number, got {value!r}") from exc
-    if not (np.isfinite(v) and v > 0):
-        raise InputError(f"{what} must be a positive finite number, got {value!r}")
-    return v
+    return _checks.number(value, what, True, not_a_number="{name} must be a positive number, got {value!r}",
+                          out_of_range="{name} must be a positive finite number, got {value!r}")
 
 
 def _correlate(f, H, anchor, border):
@@ -757,8 +744,7 @@ def log_kernel(sigma: float, radius=None):
     s = _positive(sigma, "sigma")
     if radius is None:
         radius = int(np.ceil(4 * s))
-    if isinstance(radius, bool) or not isinstance(radius, (int, np.integer)) or radius < 1:
-        raise InputError(f"radius must be a positive integer, got {radius!r}")
+    _checks.integer(radius, "radius", message=_POSITIVE_INT)
     r = np.arange(-radius, radius + 1, dtype=float)
     X, Y = np.meshgrid(r, r)
     R2 = X * X + Y * Y
@@ -839,12 +825,8 @@ def zero_crossings(response, min_contrast: float = 0.0):
     array([[0, 1, 0, 0]])
     """
     L = _image(response, "response")
-    try:
-        mc = float(min_contrast)
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"min_contrast must be a number, got {min_contrast!r}") from exc
-    if not (np.isfinite(mc) and mc >= 0):
-        raise InputError(f"min_contrast must be ≥ 0, got {min_contrast!r}")
+    mc = _checks.number(min_contrast, "min_contrast", True, allow_zero=True,
+                        out_of_range="{name} must be ≥ 0, got {value!r}")
     out = np.zeros(L.shape, bool)
     for a, b, sa, sb in ((L[:, :-1], L[:, 1:], (slice(None), slice(None, -1)), (slice(None), slice(1, None))),
                          (L[:-1, :], L[1:, :], (slice(None, -1), slice(None)), (slice(1, None), slice(None)))):
@@ -913,17 +895,10 @@ def nonmax_suppression(response, size: int = 5, threshold=None, relative: float 
         raise InputError(f"relative must lie in [0, 1), got {relative!r}")
     thr = 0.0
     if threshold is not None:
-        try:
-            thr = float(threshold)
-        except (TypeError, ValueError) as exc:
-            raise InputError(f"threshold must be a number, got {threshold!r}") from exc
-        if not np.isfinite(thr):
-            raise InputError(f"threshold must be finite, got {threshold!r}")
-    if isinstance(border, bool) or not isinstance(border, (int, np.integer)) or border < 0:
-        raise InputError(f"border must be a non-negative integer, got {border!r}")
-    if max_points is not None and (isinstance(max_points, bool) or not isinstance(max_points, (int, np.integer))
-                                   or max_points < 0):
-        raise InputError(f"max_points must be a non-negative integer, got {max_points!r}")
+        thr = _checks.number(threshold, "threshold", out_of_range="{name} must be finite, got {value!r}")
+    _checks.integer(border, "border", 0, message=_NON_NEGATIVE)
+    if max_points is not None:
+        _checks.integer(max_points, "max_points", 0, message=_NON_NEGATIVE)
     top = float(R.max())
     if not top > 0:
         return np.zeros((0, 2))
@@ -1166,8 +1141,7 @@ def sift_descriptors(img, points, cells: int = 4, cell_size: int = 4, bins: int 
     f = _image(img)
     pts = _points(points)
     for name, v in (("cells", cells), ("cell_size", cell_size), ("bins", bins)):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
-            raise InputError(f"{name} must be a positive integer, got {v!r}")
+        _checks.integer(v, name, message=_POSITIVE_INT)
     try:
         clip = float(clip)
     except (TypeError, ValueError) as exc:

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import _checks
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
 
 __all__ = ["correlation_coefficient", "correlation_surface", "parabola_vertex", "peak_sharpness",
@@ -77,10 +78,7 @@ def _point(value, name, integer=False):
     return float(arr[0]), float(arr[1])
 
 
-def _positive_int(value, name, minimum=1):
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise InputError(f"{name} must be an integer ≥ {minimum}, got {value!r}")
-    return int(value)
+_positive_int = _checks.integer
 
 
 def _window(img, x, y, half, name):

@@ -47,6 +47,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import _checks
 from .camera import InteriorOrientation, as_points
 from .errors import DegenerateGeometryError, InputError, PointBehindCameraError
 from .rotation import _as_rotation, _numbers
@@ -65,26 +66,17 @@ _FLAT = 1e-10      # window variance (relative to the image variance) below whic
 # =================================================================================================
 # input checks
 # =================================================================================================
+_IMAGE_MESSAGES = {"type": "{name}: expected a 2-D array of brightnesses, got {type}",
+                   "numeric": "{name}: expected a 2-D array of numbers",
+                   "ndim": "{name}: expected a non-empty 2-D array, got shape {shape}",
+                   "small": "{name}: expected a non-empty 2-D array, got shape {shape}"}
+
+
 def _image(img, what: str) -> np.ndarray:
-    if isinstance(img, (str, bytes)) or img is None:
-        raise InputError(f"{what}: expected a 2-D array of brightnesses, got {type(img).__name__}")
-    try:
-        arr = np.asarray(img, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"{what}: expected a 2-D array of numbers") from None
-    if arr.ndim != 2 or arr.size == 0:
-        raise InputError(f"{what}: expected a non-empty 2-D array, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InputError(f"{what} contains NaN or inf pixels")
-    return arr
+    return _checks.image(img, what, messages=_IMAGE_MESSAGES)
 
 
-def _window(window) -> int:
-    if isinstance(window, bool) or not isinstance(window, (int, np.integer)):
-        raise InputError(f"window must be an odd integer ≥ 3, got {window!r}")
-    if window < 3 or window % 2 == 0:
-        raise InputError(f"window must be an odd integer ≥ 3, got {window}")
-    return int(window)
+_window = _checks.odd_integer
 
 
 def _integer_values(values, what: str) -> np.ndarray:
@@ -106,10 +98,8 @@ def _shift(shift) -> tuple:
 
 
 def _positive(value, what: str) -> float:
-    arr = _numbers(value, what)
-    if arr.ndim != 0 or not arr > 0:
-        raise InputError(f"{what} must be a positive number, got {value!r}")
-    return float(arr)
+    return _checks.positive_scalar(_numbers(value, what), value, what,
+                                   message="{name} must be a positive number, got {value!r}")
 
 
 # =================================================================================================
@@ -666,8 +656,7 @@ def gibbs_relaxation(r, parallaxes, a: float = 10.0, b: float = -0.5, sweeps: in
     vol, P = _volume(r, parallaxes)
     a, b = _check_ab(a, b, as_printed)
     for name, value in (("sweeps", sweeps), ("burn_in", burn_in), ("seed", seed)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
-            raise InputError(f"{name} must be a non-negative integer, got {value!r}")
+        _checks.integer(value, name, 0, message="{name} must be a non-negative integer, got {value!r}")
     if not 0 <= burn_in < sweeps:
         raise InputError(f"need 0 ≤ burn_in < sweeps, got burn_in={burn_in}, sweeps={sweeps}")
     data = _data_term(vol)

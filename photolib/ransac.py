@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _checks
 from .camera import InteriorOrientation, image_vector
 from .errors import ConvergenceError, DegenerateGeometryError, InputError, PhotolibError
 from .image_pair import relative_orientation, y_parallax
@@ -150,19 +151,10 @@ def iterations_needed(inlier_ratio: float, sample_size: int, confidence: float =
 
 
 def _number(value, what) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"{what} must be a number, got {value!r}") from exc
-    if not math.isfinite(v):
-        raise InputError(f"{what} must be finite, got {value!r}")
-    return v
+    return _checks.number(value, what, out_of_range="{name} must be finite, got {value!r}")
 
 
-def _count(value, what, minimum=1) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise InputError(f"{what} must be an integer ≥ {minimum}, got {value!r}")
-    return int(value)
+_count = _checks.integer
 
 
 def _confidence(value) -> float:

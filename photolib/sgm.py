@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _checks
 from .errors import DegenerateGeometryError, InputError
 
 __all__ = ["COSTS", "cost_volume", "census_transform", "aggregate_costs", "path_cost",
@@ -58,18 +59,14 @@ def _kernels():
 
 
 # --------------------------------------------------------------------------- validation
+_IMAGE_MESSAGES = {"numeric": "{name} must be a 2-D numeric image",
+                   "ndim": "{name} must be a 2-D grey image, got shape {shape}",
+                   "small": "{name} is too small ({shape}); at least 2×2 pixels are needed",
+                   "finite": "{name} has NaN or inf pixels"}
+
+
 def _image(a, name):
-    try:
-        arr = np.asarray(a, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"{name} must be a 2-D numeric image") from exc
-    if arr.ndim != 2:
-        raise InputError(f"{name} must be a 2-D grey image, got shape {arr.shape}")
-    if arr.shape[0] < 2 or arr.shape[1] < 2:
-        raise InputError(f"{name} is too small ({arr.shape}); at least 2×2 pixels are needed")
-    if not np.all(np.isfinite(arr)):
-        raise InputError(f"{name} has NaN or inf pixels")
-    return arr
+    return _checks.image(a, name, 2, messages=_IMAGE_MESSAGES, reject=())
 
 
 def _pair(left, right):
@@ -92,13 +89,8 @@ def _int(value, name, low=None):
 
 
 def _positive(value, name, allow_zero=False):
-    try:
-        value = float(value)
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"{name} must be a number, got {value!r}") from exc
-    if not np.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
-        raise InputError(f"{name} must be {'≥' if allow_zero else '>'} 0, got {value}")
-    return value
+    return _checks.number(value, name, True, allow_zero=allow_zero,
+                          out_of_range="{name} must be ≥ 0, got {v}" if allow_zero else "{name} must be > 0, got {v}")
 
 
 def _range(max_disparity, min_disparity, width):

@@ -27,20 +27,17 @@ from itertools import combinations
 
 import numpy as np
 
+from . import _checks
 from .camera import ExteriorOrientation, InteriorOrientation, _expect, as_points
 from .errors import DegenerateGeometryError, InputError, PointBehindCameraError
 
 __all__ = ["epipolar_segment", "DSMResult", "dsm_vertical_line", "dsm_multi_image"]
 
 
-def _number(value, name, positive=False):
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number, got {value!r}") from None
-    if not np.isfinite(v) or (positive and v <= 0):
-        raise InputError(f"{name} must be a finite{' positive' if positive else ''} number, got {value!r}")
-    return v
+_number = _checks.number
+_IMAGE_MESSAGES = {"type": "{name} must be an array of numbers", "numeric": "{name} must be an array of numbers",
+                   "ndim": "{name} must be a 2-D image, got shape {shape}",
+                   "small": "{name} must be a 2-D image, got shape {shape}"}
 
 
 def _z_range(z_min, z_max):
@@ -172,16 +169,7 @@ class _View:
         _expect(eo, ExteriorOrientation, f"{name} exterior orientation")
         if io.has_distortion:
             raise InputError(f"{name}: distortion-free cameras only (correct the images first)")
-        if isinstance(image, (str, bytes)):
-            raise InputError(f"{name} must be an array of numbers")
-        try:
-            img = np.asarray(image, dtype=float)
-        except (TypeError, ValueError):
-            raise InputError(f"{name} must be an array of numbers") from None
-        if img.ndim != 2 or min(img.shape) < 2:
-            raise InputError(f"{name} must be a 2-D image, got shape {img.shape}")
-        if not np.all(np.isfinite(img)):
-            raise InputError(f"{name} contains NaN or inf pixels")
+        img = _checks.image(image, name, 2, messages=_IMAGE_MESSAGES, reject=(str, bytes))
         self.img, self.io, self.eo, self.d = img, io, eo, pixel_size
         self.A, self.S = eo.matrix, eo.center
 
@@ -296,8 +284,7 @@ def _check(X, Y, z_min, z_max, steps, half_window, window_spacing, min_correlati
     X, Y = _grid(X, Y)
     lo, hi = _z_range(z_min, z_max)
     s = _steps(steps)
-    if isinstance(half_window, bool) or not isinstance(half_window, (int, np.integer)) or half_window < 1:
-        raise InputError(f"half_window must be an integer ≥ 1, got {half_window!r}")
+    _checks.integer(half_window, "half_window")
     if window_spacing is None:
         ws = abs(X[0, 1] - X[0, 0]) if X.shape[1] > 1 else (abs(Y[1, 0] - Y[0, 0]) if X.shape[0] > 1 else 0.0)
         if ws <= 0:

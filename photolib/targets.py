@@ -27,11 +27,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import _checks
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
-from .matching import _array, _image, _point, _positive_int, correlation_surface
+from .matching import _array, _image, _point, correlation_surface
 
 __all__ = ["threshold_target", "centroid", "gradient_weight", "robust_weight", "CircleFit", "circle_fit",
            "kadnichansky_detect", "CrossFit", "kadnichansky_center", "find_targets"]
+
+_positive_int = _checks.integer
 
 
 def _number(value, name, positive=False):
