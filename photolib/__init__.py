@@ -30,6 +30,7 @@ so ``import photolib`` stays light); the modules mirror the book's chapters:
 * :mod:`photolib.sgm` — semi-global matching in image and object space (§6.4–§6.5)
 * :mod:`photolib.dtm` — TIN, grids, contours, DSM → DTM (§6.6–§6.7)
 * :mod:`photolib.mrf` — terrain from a stereo pair by a Markov random field (Baikalova et al.)
+* :mod:`photolib.rpc` — the rational polynomial (RPC) sensor model of satellite images (§8.5, §8.18)
 * :mod:`photolib.datasets` — where the real data is, and readers for the stereo benchmarks
 * :mod:`photolib.conventions` — conversions to Western, Hanzl's and OpenCV's conventions
   (Appendix A)
@@ -110,7 +111,7 @@ _ENTRY_POINTS = {
 _MODULES = ("rotation", "camera", "single_image", "resection", "digital", "interior", "scanners",
             "image_pair", "gnss_centres", "strip_triangulation", "bundle", "triangulation_layouts",
             "synthetic", "projective", "matching", "features", "epipolar", "ransac", "targets", "surface", "sgm",
-            "dtm", "mrf", "datasets", "conventions", "lsq", "derivations", "errors")
+            "dtm", "mrf", "rpc", "datasets", "conventions", "lsq", "derivations", "errors")
 
 __all__ = ["__version__", *_ENTRY_POINTS, *_MODULES]
 
