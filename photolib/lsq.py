@@ -1289,7 +1289,7 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
 
     t0 = time.perf_counter()
     timings = {}
-    m, r, q = eq.B1.shape
+    q = eq.B1.shape[2]
     free_frames = np.ones(n_frames, bool) if free_frames is None else np.asarray(free_frames, bool)
     free_points = np.ones(n_points, bool) if free_points is None else np.asarray(free_points, bool)
     frame, point = np.asarray(eq.frame, np.intp), np.asarray(eq.point, np.intp)
@@ -1308,11 +1308,7 @@ def _solve_block(eq: BlockCorrectionEquations, n_frames: int, n_points: int, *,
     # normal-equation blocks (3.5.8) in the convention N·δ = Lᴺ of (3.5.13): N₁₁, Lᴺ₁ per image,
     # N₂₂, Lᴺ₂ per point, one q×3 block W of N₁₂ per observation of a free point in a free image.
     # (The blocks of fixed points and images are computed too and replaced below.)
-    P = np.asarray(eq.P, dtype=float)
-    P = np.full((m, r), P) if P.ndim == 0 else np.ascontiguousarray(np.broadcast_to(P, (m, r)))
-    N11, L1 = np.zeros((n_frames, q, q)), np.zeros((n_frames, q))
-    N22, L2 = np.zeros((n_points, 3, 3)), np.zeros((n_points, 3))
-    W = np.zeros((slot_frame.size, q, 3))
+    P, N11, L1, N22, L2, W = _normal_arrays(eq, n_frames, n_points, slot_frame.size)
     kernels.normal_blocks(frame, point, np.ascontiguousarray(eq.B1, dtype=float),
                           np.ascontiguousarray(eq.B2, dtype=float), np.ascontiguousarray(eq.L, dtype=float), P,
                           pattern["slot"], N11, L1, N22, L2, W)
@@ -1395,14 +1391,10 @@ def _solve_block_compiled(eq, pattern, n_frames, n_points, frame_prior, point_pr
     are those of :func:`_solve_block`.
     """
     from . import _block_kernels as kernels
-    m, r, q = eq.B1.shape
+    q = eq.B1.shape[2]
     frame, point = np.asarray(eq.frame, np.intp), np.asarray(eq.point, np.intp)
-    P = np.asarray(eq.P, dtype=float)
-    P = np.full((m, r), P) if P.ndim == 0 else np.ascontiguousarray(np.broadcast_to(P, (m, r)))
-    N11, L1 = np.zeros((n_frames, q, q)), np.zeros((n_frames, q))
-    N22, L2 = np.zeros((n_points, 3, 3)), np.zeros((n_points, 3))
     slot_frame = pattern["slot_frame"]
-    W = np.zeros((slot_frame.size, q, 3))
+    P, N11, L1, N22, L2, W = _normal_arrays(eq, n_frames, n_points, slot_frame.size)
     fl, fp = _prior_arrays(frame_prior, (n_frames, q))
     pl, pp = _prior_arrays(point_prior, (n_points, 3))
     iN22, status = np.empty((n_points, 3, 3)), np.zeros(n_points, np.int8)
@@ -1424,6 +1416,15 @@ def _solve_block_compiled(eq, pattern, n_frames, n_points, frame_prior, point_pr
     if code == 2 or not value > rcond:
         raise _singular_block(value, column, pattern, frame)
     return BlockSolution(d1, d2, None, None, {"linear step (compiled)": time.perf_counter() - t0})
+
+
+def _normal_arrays(eq, n_frames, n_points, n_slots):
+    """The weights as an (m, r) array and zeroed N₁₁, Lᴺ₁, N₂₂, Lᴺ₂ and the q×3 blocks W of N₁₂."""
+    m, r, q = eq.B1.shape
+    P = np.asarray(eq.P, dtype=float)
+    P = np.full((m, r), P) if P.ndim == 0 else np.ascontiguousarray(np.broadcast_to(P, (m, r)))
+    return (P, np.zeros((n_frames, q, q)), np.zeros((n_frames, q)), np.zeros((n_points, 3, 3)),
+            np.zeros((n_points, 3)), np.zeros((n_slots, q, 3)))
 
 
 def _prior_arrays(prior, shape):
