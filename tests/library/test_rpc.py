@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from photolib import datasets
-from photolib.rpc import RPC, RPC00B_TERMS, _terms, _terms_dL, _terms_dP, locate, project
+from photolib.rpc import RPC, RPC00B_TERMS, _terms, _terms_dH, _terms_dL, _terms_dP, locate, project
 
 # The book's (8.5.8), transcribed: a1 + a2 X + a3 Y + a4 Z + a5 XY + a6 XZ + a7 YZ + a8 X² + a9 Y²
 # + a10 Z² + a11 XYZ + a12 X³ + a13 XY² + a14 XZ² + a15 X²Y + a16 Y³ + a17 YZ² + a18 X²Z + a19 Y²Z + a20 Z³
@@ -47,9 +47,11 @@ def test_term_order_is_the_books_8_5_8_and_rpc00b():
         f = sympy.lambdify((L, P, H), term, "numpy")
         fl = sympy.lambdify((L, P, H), sympy.diff(term, L), "numpy")
         fp = sympy.lambdify((L, P, H), sympy.diff(term, P), "numpy")
+        fh = sympy.lambdify((L, P, H), sympy.diff(term, H), "numpy")
         np.testing.assert_allclose(_terms(*vals)[:, k], np.broadcast_to(f(*vals), (7,)), rtol=0, atol=1e-15)
         np.testing.assert_allclose(_terms_dL(*vals)[:, k], np.broadcast_to(fl(*vals), (7,)), rtol=0, atol=1e-15)
         np.testing.assert_allclose(_terms_dP(*vals)[:, k], np.broadcast_to(fp(*vals), (7,)), rtol=0, atol=1e-15)
+        np.testing.assert_allclose(_terms_dH(*vals)[:, k], np.broadcast_to(fh(*vals), (7,)), rtol=0, atol=1e-15)
 
 
 # ----------------------------------------------------------------------------- synthetic
@@ -228,3 +230,47 @@ def test_ventoux_crop_rpc_from_the_geotiff_transform(ventoux):
     lon, lat = locate(rpc, row0 + shape[0] / 2, col0 + shape[1] / 2, rpc.height_off)
     r, c = project(crop, lon, lat, rpc.height_off)
     np.testing.assert_allclose([r, c], [shape[0] / 2, shape[1] / 2], atol=1e-6)
+
+
+def test_project_and_locate_dispatch_bias_corrected_models():
+    from photolib.rpc import BiasCorrectedRPC
+    rpc = random_rpc(2)
+    fixed = BiasCorrectedRPC(rpc, "affine", (1.0, 0.2, -0.1), (-2.0, 0.05, 0.3))
+    lon, lat, h = np.array([5.31, 5.28]), np.array([44.12, 44.09]), np.array([300.0, 1500.0])
+    r, c = project(fixed, lon, lat, h)
+    r0, c0 = project(rpc, lon, lat, h)
+    dr, dc = fixed.correction(r, c)
+    np.testing.assert_allclose(r + dr, r0, atol=1e-9)     # (8.6.1): x + δx = P1/P2
+    np.testing.assert_allclose(c + dc, c0, atol=1e-9)
+    lon2, lat2 = locate(fixed, r, c, h)
+    np.testing.assert_allclose([lon2, lat2], [lon, lat], atol=1e-10)
+
+
+def test_numba_kernel_matches_the_numpy_iteration():
+    import photolib.rpc as rpcmod
+    rpc = random_rpc(3, nonlinear=2e-2)
+    rng = np.random.default_rng(21)
+    rows, cols, hs = rng.uniform(0, 10000, 3000), rng.uniform(0, 9600, 3000), rng.uniform(100, 1900, 3000)
+    assert rows.size >= rpcmod._KERNEL_FROM
+    lon, lat = locate(rpc, rows, cols, hs)                        # the kernel
+    r = (rows - rpc.line_off) / rpc.line_scale
+    c = (cols - rpc.samp_off) / rpc.samp_scale
+    H = (hs - rpc.height_off) / rpc.height_scale
+    L, P = rpcmod._locate_numpy(rpc, r, c, H, 1e-9, 30, 3.0)     # the vectorised loop
+    np.testing.assert_allclose(lon, L * rpc.long_scale + rpc.long_off, rtol=0, atol=1e-11)
+    np.testing.assert_allclose(lat, P * rpc.lat_scale + rpc.lat_off, rtol=0, atol=1e-11)
+    back = np.hypot(*(np.subtract(project(rpc, lon, lat, hs), (rows, cols))))
+    assert back.max() < 1e-6
+
+
+def test_numba_kernel_reports_the_same_errors():
+    from photolib.errors import ConvergenceError, DegenerateGeometryError
+    from test_bad_input_rpc import CUBIC, DIVERGE, NO_LAT
+    many = np.full(1500, 1.0)
+    with pytest.raises(DegenerateGeometryError, match="singular"):
+        locate(NO_LAT, 100.0 * many, 200.0 * many, 0.0 * many)
+    with pytest.raises(ConvergenceError, match="did not reach") as info:
+        locate(CUBIC, 200.0 * many, 200.0 * many, 0.0 * many, max_iterations=2)
+    assert len(info.value.history) == 3 and info.value.history[-1] > 1e-9
+    with pytest.raises((ConvergenceError, DegenerateGeometryError)):
+        locate(DIVERGE, 140.0 * many, 200.0 * many, 0.0 * many)
