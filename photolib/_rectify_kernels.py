@@ -13,13 +13,13 @@ from numba import njit, prange
 
 
 @njit(cache=True)
-def _keys_weight(t):
-    """Keys' cubic convolution kernel with a = −0.5 (the 'cubic' of GDAL and OpenCV)."""
+def _keys_weight(t, a):
+    """Keys' cubic convolution kernel with parameter a (−0.5: Keys/GDAL/PIL; −0.75: OpenCV)."""
     t = abs(t)
     if t <= 1.0:
-        return (1.5 * t - 2.5) * t * t + 1.0
+        return ((a + 2.0) * t - (a + 3.0)) * t * t + 1.0
     if t < 2.0:
-        return ((-0.5 * t + 2.5) * t - 4.0) * t + 2.0
+        return ((a * t - 5.0 * a) * t + 8.0 * a) * t - 4.0 * a
     return 0.0
 
 
@@ -57,7 +57,7 @@ def resample_bilinear(image, rows, cols, fill, out):
 
 
 @njit(cache=True, parallel=True)
-def resample_bicubic(image, rows, cols, fill, out):
+def resample_bicubic(image, rows, cols, fill, out, a=-0.5):
     n_rows, n_cols = image.shape[0], image.shape[1]
     for k in prange(rows.size):
         r, c = rows[k], cols[k]
@@ -69,13 +69,13 @@ def resample_bicubic(image, rows, cols, fill, out):
         for b in range(image.shape[2]):
             total = 0.0
             for di in range(-1, 3):
-                wi = _keys_weight(r - (i0 + di))
+                wi = _keys_weight(r - (i0 + di), a)
                 if wi == 0.0:
                     continue
                 ii = min(max(i0 + di, 0), n_rows - 1)
                 row_sum = 0.0
                 for dj in range(-1, 3):
-                    wj = _keys_weight(c - (j0 + dj))
+                    wj = _keys_weight(c - (j0 + dj), a)
                     if wj == 0.0:
                         continue
                     jj = min(max(j0 + dj, 0), n_cols - 1)
