@@ -15,7 +15,7 @@ Then the sensor origin is S = R_IMU + A_imu·lever_sensor, its attitude A_S = A_
 and a point seen along the sensor vector R is R_M = S + A_S·R (8.14.1). R depends on the
 sensor: a frame-camera ray N·(x − x₀, y − y₀, −f) (:func:`frame_vector`, N from a ``scale`` or
 a known height ``Z``), a scanner unit ray N·(x, y, z) (:func:`scanner_vector`, (8.2.2)), a lidar
-or radar range vector D·(0, sin φ, −cos φ) (:func:`range_vector`; a radar vector computed by
+or radar range vector D·(0, sin φ, −cos φ) (:func:`photolib.radar.range_vector`; a radar vector computed by
 :mod:`photolib.radar` is accepted as any sensor-frame vector). :func:`sensor_pose` gives S and
 A_S, :func:`ground_to_sensor` inverts (8.14.1).
 
@@ -54,7 +54,7 @@ import numpy as np
 
 from .errors import ConvergenceError, DegenerateGeometryError, InputError, PointBehindCameraError
 
-__all__ = ["frame_vector", "scanner_vector", "range_vector", "sensor_pose", "direct_georeference",
+__all__ = ["frame_vector", "scanner_vector", "sensor_pose", "direct_georeference",
            "ground_to_sensor", "interpolate_fixed_centres", "TabulatedLineScanner", "ThreeLineBlock",
            "three_line_block", "FixedCentreAdjustment", "fixed_centre_triangulation", "DirectOrtho",
            "direct_orthorectify", "QuasiFrame", "quasi_frame_image", "scan_voxel_cost", "object_space_sgm"]
@@ -207,49 +207,6 @@ def scanner_vector(y_c, f, x_line=0.0, x0=0.0, y0=0.0) -> np.ndarray:
     return r / np.linalg.norm(r, axis=1, keepdims=True)
 
 
-def range_vector(D, phi) -> np.ndarray:
-    """The lidar/radar range vector R = D·(0, sin φ, −cos φ) of (8.14.1).
-
-    φ is the angle of R in the sensor's y–z plane from −z towards +y (measured by a lidar,
-    computed by a radar, §8.11).
-
-    Parameters
-    ----------
-    D : float or (n,) array
-        Range (m), positive.
-    phi : float or (n,) array
-        Angle φ (rad).
-
-    Returns
-    -------
-    numpy.ndarray
-        (n, 3) vectors.
-
-    Raises
-    ------
-    InputError
-        NaN/inf, D ≤ 0, sizes that do not broadcast.
-
-    References
-    ----------
-    Chibunichev (2022), §8.14 (vector after (8.14.1)); §8.3, (8.3.1); §8.11.
-
-    Examples
-    --------
-    >>> range_vector(100.0, 0.0).round(6) + 0.0
-    array([[   0.,    0., -100.]])
-    """
-    D = np.atleast_1d(_array(D, "D", ndim=(0, 1)))
-    phi = np.atleast_1d(_array(phi, "phi", ndim=(0, 1)))
-    if np.any(D <= 0):
-        raise InputError("the range D must be positive")
-    try:
-        D, phi = np.broadcast_arrays(D, phi)
-    except ValueError:
-        raise InputError(f"D and phi have sizes {D.size} and {phi.size} that do not broadcast") from None
-    return D[:, None] * np.column_stack([np.zeros(D.size), np.sin(phi), -np.cos(phi)])
-
-
 def _pose(gnss, A_imu, lever_gnss, lever_sensor, boresight):
     G = _vectors(gnss, "gnss")
     A = _rotations(A_imu, "A_imu")
@@ -318,7 +275,7 @@ def direct_georeference(vectors, gnss, A_imu, lever_gnss, lever_sensor, boresigh
     R_M = R_IMU + A_IMU·r_IMU/S + A_IMU·A_IMU/S·R, R_IMU = R_GNSS − A_IMU·r_GNSS/IMU. The sensor
     vector R is ``vectors`` times ``scale`` (N of a frame or scanner ray), or times the N that
     puts the point at height ``Z``, or ``vectors`` as they are (lidar/radar range vectors,
-    :func:`range_vector`, or any vector in the sensor frame).
+    :func:`photolib.radar.range_vector`, or any vector in the sensor frame).
 
     Parameters
     ----------

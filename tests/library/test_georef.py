@@ -15,7 +15,7 @@ import pytest
 import sympy as sp
 from scipy.spatial.transform import Rotation
 
-from photolib import georef, sgm
+from photolib import georef, radar, sgm
 from photolib.errors import PointBehindCameraError
 from photolib.rectify import RasterGrid, orthorectify
 
@@ -66,7 +66,7 @@ def test_round_trip_frame_scanner_lidar(rig):
     P = georef.direct_georeference(u, **rig, scale=[1500.0, 1600.0, 1700.0])
     np.testing.assert_allclose(georef.ground_to_sensor(P, **rig), u * [[1500.0], [1600.0], [1700.0]], atol=1e-8)
     D, phi = np.array([900.0, 1200.0]), np.array([-0.3, 0.4])
-    P = georef.direct_georeference(georef.range_vector(D, phi), **rig)
+    P = georef.direct_georeference(radar.range_vector(D, phi), **rig)
     R = georef.ground_to_sensor(P, **rig)
     np.testing.assert_allclose(np.linalg.norm(R, axis=1), D)
     np.testing.assert_allclose(np.arctan2(R[:, 1], -R[:, 2]), phi)
