@@ -16,7 +16,7 @@ from numba import njit
 
 
 @njit(cache=True)
-def _terms(L, P, H, t, tL, tP):
+def _terms_only(L, P, H, t):
     t[0] = 1.0
     t[1] = L
     t[2] = P
@@ -37,6 +37,12 @@ def _terms(L, P, H, t, tL, tP):
     t[17] = L * L * H
     t[18] = P * P * H
     t[19] = H * H * H
+
+
+@njit(cache=True)
+def _terms(L, P, H, t, tL, tP):
+    """The 20 RPC00B terms and their derivatives by L and by P."""
+    _terms_only(L, P, H, t)
     for k in range(20):
         tL[k] = 0.0
         tP[k] = 0.0
@@ -121,30 +127,6 @@ def _newton(r, c, H, L, P, ln, ld, sn, sd, line_scale, samp_scale, tol, max_iter
         if abs(L) > limit or abs(P) > limit:
             return L, P, 4, it + 1
     return L, P, 1, max_iterations + 1
-
-
-@njit(cache=True)
-def _terms_only(L, P, H, t):
-    t[0] = 1.0
-    t[1] = L
-    t[2] = P
-    t[3] = H
-    t[4] = L * P
-    t[5] = L * H
-    t[6] = P * H
-    t[7] = L * L
-    t[8] = P * P
-    t[9] = H * H
-    t[10] = P * L * H
-    t[11] = L * L * L
-    t[12] = L * P * P
-    t[13] = L * H * H
-    t[14] = L * L * P
-    t[15] = P * P * P
-    t[16] = P * H * H
-    t[17] = L * L * H
-    t[18] = P * P * H
-    t[19] = H * H * H
 
 
 @njit(cache=True)

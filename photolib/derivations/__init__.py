@@ -25,6 +25,13 @@ Modules, by topic:
   shutter, Chapter 3, §3.5–§3.9.
 * :mod:`~photolib.derivations.projective` — the homography, §1.7 and Chapter 4, §4.1.
 * :mod:`~photolib.derivations.gnss` — the GNSS-centres paper (appendix).
+* :mod:`~photolib.derivations.matching` — least-squares matching, Chapter 5, §5.4.
+* :mod:`~photolib.derivations.orthophoto` — the least-squares DSM and orthophoto, Chapter 7, §7.8.
+* :mod:`~photolib.derivations.scanner` — pushbroom collinearity, resection and coplanarity,
+  Chapter 8, §8.2–§8.8.
+* :mod:`~photolib.derivations.radar` — radar positioning, stereo and InSAR, §8.9–§8.13.
+* :mod:`~photolib.derivations.georef` — direct georeferencing and scanner triangulation,
+  §8.14–§8.15.
 
 Every public name of these modules is available here: ``from photolib import derivations;
 derivations.collinearity_model("kaw")``.
@@ -36,22 +43,28 @@ Examples
 (2, 6)
 """
 
-from . import (bundle, collinearity, coplanarity, distortion, gnss, intersection, model, projective, quaternion,
-               rotation, similarity, symbols)
+from . import (bundle, collinearity, coplanarity, distortion, georef, gnss, intersection, matching, model,
+               orthophoto, projective, quaternion, radar, rotation, scanner, similarity, symbols)
 from .bundle import *  # noqa: F401,F403
 from .collinearity import *  # noqa: F401,F403
 from .coplanarity import *  # noqa: F401,F403
 from .coplanarity import _IMAGE1_SUBS  # noqa: F401 — used by the book's tests
 from .distortion import *  # noqa: F401,F403
+from .georef import *  # noqa: F401,F403
 from .gnss import *  # noqa: F401,F403
 from .intersection import *  # noqa: F401,F403
+from .matching import *  # noqa: F401,F403
 from .model import *  # noqa: F401,F403
+from .orthophoto import *  # noqa: F401,F403
 from .projective import *  # noqa: F401,F403
 from .quaternion import *  # noqa: F401,F403
+from .radar import *  # noqa: F401,F403
 from .rotation import *  # noqa: F401,F403
+from .scanner import *  # noqa: F401,F403
 from .similarity import *  # noqa: F401,F403
 from .symbols import *  # noqa: F401,F403
 
 __all__ = [name for module in (symbols, model, rotation, quaternion, distortion, collinearity, intersection,
-                               coplanarity, similarity, bundle, projective, gnss)
+                               coplanarity, similarity, bundle, projective, gnss, matching, orthophoto,
+                               scanner, radar, georef)
            for name in module.__all__]
