@@ -19,7 +19,9 @@ Built on the Chapter 7 engine of :mod:`photolib.rectify` (:class:`~photolib.rect
 * §7.8 — :func:`lsq_dsm_ortho`: the DSM and the true orthophoto by least squares, (7.8.1)–(7.8.3):
   unknowns F and Z per ortho pixel and the photometric gains k_i (one fixed to 1), each step solved
   by the block solver of :mod:`photolib.lsq` (the pixel blocks eliminated, a Schur complement for
-  the gains); :func:`lsq_unknown_count` the book's counts N = 2P + (S − 1) [+ 6S], M = PS.
+  the gains); with ``estimate_eo=True`` the six EO elements of every image join the unknowns
+  (7.8.4) together with the collinearity equations of ground control points, which fix the datum;
+  :func:`lsq_unknown_count` the book's counts N = 2P + (S − 1) [+ 6S], M = PS.
 """
 
 from __future__ import annotations
@@ -562,13 +564,16 @@ class LsqOrtho:
     gains : (S,) array
         k_i (k = 1 for the reference image); k_i = 1/gain_i of image i relative to the reference.
     adjustment : photolib.lsq.Adjustment
-        The engine's result (iterations, history, μ).
+        The engine's result (iterations, history, μ; ``dof`` = equations (photometric and GCP)
+        minus the unknowns the solver actually carried).
     counts : (int, int)
         (N, M) of :func:`lsq_unknown_count`.
+    eos : tuple of photolib.camera.ExteriorOrientation
+        The exterior orientations: adjusted with ``estimate_eo=True`` (7.8.4), else the given ones.
 
     References
     ----------
-    Chibunichev (2022), §7.8, eqs. (7.8.1)–(7.8.3).
+    Chibunichev (2022), §7.8, eqs. (7.8.1)–(7.8.4).
 
     Examples
     --------
@@ -582,12 +587,55 @@ class LsqOrtho:
     gains: np.ndarray
     adjustment: object
     counts: tuple
+    eos: tuple = ()
+
+
+def _gcps(gcp_xyz, gcp_xy, S):
+    """Checked GCP arrays: (n, 3) ground coordinates, (S, n, 2) image measurements (NaN: not measured)."""
+    if gcp_xyz is None and gcp_xy is None:
+        return np.zeros((0, 3)), np.zeros((S, 0, 2))
+    if gcp_xyz is None or gcp_xy is None:
+        raise InputError("give both gcp_xyz (n, 3) and gcp_xy (S, n, 2), or neither")
+    try:
+        G = np.asarray(gcp_xyz, dtype=np.float64)
+        g = np.asarray(gcp_xy, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise InputError("gcp_xyz and gcp_xy must be numeric arrays") from None
+    if G.ndim != 2 or G.shape[1] != 3:
+        raise InputError(f"gcp_xyz must be (n, 3) ground coordinates, got shape {G.shape}")
+    if g.shape != (S, G.shape[0], 2):
+        raise InputError(f"gcp_xy must be (S, n, 2) = {(S, G.shape[0], 2)} image coordinates in mm "
+                         f"(NaN where not measured), got shape {g.shape}")
+    if not np.all(np.isfinite(G)):
+        raise InputError("gcp_xyz contains NaN or inf")
+    if np.any(np.isinf(g)) or np.any(np.isnan(g[..., 0]) != np.isnan(g[..., 1])):
+        raise InputError("gcp_xy contains inf, or a measurement with only one coordinate NaN")
+    return G, g
+
+
+def _datum_check(G, g):
+    """§7.8.4: the GCPs must fix the 7 datum parameters (3 shifts, 3 rotations, scale)."""
+    seen = ~np.isnan(g[..., 0]).all(axis=0)
+    pts = G[seen]
+    n = pts.shape[0]
+    spread = 0.0
+    if n >= 3:
+        sv = np.linalg.svd(pts - pts.mean(axis=0), compute_uv=False)
+        spread = sv[1] / max(sv[0], 1e-300)
+    if n < 3 or spread < 1e-6:
+        what = f"{n} measured GCP{'s' if n != 1 else ''}" + (" (collinear)" if n >= 3 else "")
+        raise DegenerateGeometryError(
+            f"§7.8, (7.8.4): with unknown EO the photometric equations only tie the images to each other, "
+            f"leaving a datum defect of 7 (three shifts, three rotations and the scale of a 3-D similarity "
+            f"of the cameras and the surface); got {what} — add the collinearity equations (7.8.2) of at "
+            "least 3 non-collinear ground control points")
 
 
 def lsq_dsm_ortho(images: Sequence, eos: Sequence, io, pixel_size: float, grid: RasterGrid, z0, *,
                   reference: int = 0, sigma_z0: float = 2.0, sigma_f: float = 0.02, max_step: float = 0.25,
-                  max_iter: int = 20, tol_z: float = 1e-3, progress=None) -> LsqOrtho:
-    """DSM and true orthophoto by least squares from all images (§7.8, (7.8.1)–(7.8.3)).
+                  max_iter: int = 20, tol_z: float = 1e-3, progress=None, estimate_eo: bool = False,
+                  gcp_xyz=None, gcp_xy=None, sigma_gcp: float = 0.5) -> LsqOrtho:
+    """DSM and true orthophoto by least squares from all images (§7.8, (7.8.1)–(7.8.4)).
 
     Unknowns: the brightness F and the height Z of every ortho pixel, and the photometric gain
     k_i of every image but the ``reference`` one (k = 1). Each pixel and image gives (7.8.1),
@@ -604,12 +652,23 @@ def lsq_dsm_ortho(images: Sequence, eos: Sequence, io, pixel_size: float, grid: 
     whenever the pixel's step changes sign (an oscillating pixel). Iterations stop when the RMS
     of δZ is below ``tol_z``.
 
+    With ``estimate_eo=True`` (7.8.4) each frame carries k_i and X_S, Y_S, Z_S, ω, α, κ (``eos``
+    are then the initial values): a₄…a₉ = −k_i(∂f_i/∂x·∂x/∂p + ∂f_i/∂y·∂y/∂p) with ∂x/∂p, ∂y/∂p
+    the collinearity partials of §1.8 (:func:`photolib.derivations.orthophoto.eo_partials_function`).
+    The reference gain is held by a zero column and a direct observation δk = 0, so the solver
+    carries exactly N = 2P + (S − 1) + 6S unknowns. The photometric equations alone leave a datum
+    defect of 7 (a 3-D similarity of cameras and surface changes none of them), so the
+    collinearity equations of ground control points join as further rows (weight
+    (σ_f/σ_gcp)², σ_gcp in pixels); at least 3 non-collinear measured GCPs are required.
+    Convergence then also needs the EO steps below ``tol_z`` (centres, m) and ``tol_z``/H
+    (angles, rad).
+
     Parameters
     ----------
     images : sequence of 2-D arrays
         S ≥ 3 images (one camera, distortion-free).
     eos : sequence of photolib.camera.ExteriorOrientation
-        Their (known) exterior orientations.
+        Their exterior orientations: known, or initial values with ``estimate_eo``.
     io : photolib.camera.InteriorOrientation
         The camera.
     pixel_size : float
@@ -623,7 +682,8 @@ def lsq_dsm_ortho(images: Sequence, eos: Sequence, io, pixel_size: float, grid: 
     sigma_z0 : float
         A-priori σ of the initial DSM (m): z0 enters as a direct observation of Z with weight
         (sigma_f/sigma_z0)², which keeps pixels with little texture along the parallax direction
-        from running away (``np.inf``: no prior, the book's pure form).
+        from running away (``np.inf``: no prior, the book's pure form). With ``estimate_eo`` use a
+        weak prior (e.g. 20 m): a DSM prior with an error of its own tilts the whole block.
     sigma_f : float
         σ of the image brightness (the photometric equations get weight 1, the prior is scaled to it).
     max_step : float
@@ -633,7 +693,16 @@ def lsq_dsm_ortho(images: Sequence, eos: Sequence, io, pixel_size: float, grid: 
     tol_z : float
         Convergence when the RMS of δZ over the pixels is below ``tol_z`` (m).
     progress : callable, optional
-        Called with each :class:`photolib.lsq.IterationRecord` (``delta`` = max |δk|, RMS δZ).
+        Called with each :class:`photolib.lsq.IterationRecord` (``delta`` = max |δk|, RMS δZ
+        [, max |δ centre|, max |δ angle|]).
+    estimate_eo : bool
+        False: EO known, (7.8.3). True: EO unknown, (7.8.4) with the GCP collinearity equations.
+    gcp_xyz : (n, 3) array, optional
+        Ground control points X, Y, Z (needed with ``estimate_eo``; ignored without it).
+    gcp_xy : (S, n, 2) array, optional
+        Their measured image coordinates x, y (mm, distortion-free), NaN where not measured.
+    sigma_gcp : float
+        σ of a GCP image measurement, pixels.
 
     Returns
     -------
@@ -642,16 +711,17 @@ def lsq_dsm_ortho(images: Sequence, eos: Sequence, io, pixel_size: float, grid: 
     Raises
     ------
     InputError
-        Mismatched lists, wrong shapes, NaN, a pixel outside an image, a bad reference.
+        Mismatched lists, wrong shapes, NaN, a pixel outside an image, a bad reference, bad GCP arrays.
     DegenerateGeometryError
-        N > M (S ≤ 2: the book's example), a textureless pixel (Z not determined).
+        N > M (S ≤ 2: the book's example), a textureless pixel (Z not determined), unknown EO
+        with fewer than 3 non-collinear GCPs (the datum defect of 7).
     ConvergenceError
         No convergence in ``max_iter`` iterations.
 
     References
     ----------
-    Chibunichev (2022), §7.8, eqs. (7.8.1)–(7.8.3) and the counts N = 2P + (S − 1), M = PS;
-    §3.5, eq. (3.5.16) (the reduction).
+    Chibunichev (2022), §7.8, eqs. (7.8.1)–(7.8.4) and the counts N = 2P + (S − 1) [+ 6S], M = PS;
+    §3.5, eq. (3.5.16) (the reduction); §1.8, eq. (1.8.3) (the EO partials).
 
     Examples
     --------
@@ -665,9 +735,15 @@ def lsq_dsm_ortho(images: Sequence, eos: Sequence, io, pixel_size: float, grid: 
     Traceback (most recent call last):
     ...
     photolib.errors.DegenerateGeometryError: §7.8: 2 images give M = 8 equations for N = 9 unknowns ...
+    >>> rng = np.random.default_rng(0)
+    >>> lsq_dsm_ortho([rng.uniform(size=(30, 30)) for _ in range(3)], eos + eos[:1], InteriorOrientation(50.0),
+    ...               0.1, RasterGrid(-1.0, 1.0, 1.0, (2, 2)), np.zeros((2, 2)), estimate_eo=True)
+    Traceback (most recent call last):
+    ...
+    photolib.errors.DegenerateGeometryError: §7.8, (7.8.4): with unknown EO ... datum defect of 7 ...
     """
     from .camera import ExteriorOrientation, InteriorOrientation
-    from .derivations.orthophoto import height_partials_function
+    from .derivations.orthophoto import eo_partials_function, height_partials_function
     from .errors import ConvergenceError
     from .lsq import Adjustment, BlockCorrectionEquations, IterationRecord, solve_block_normal_equations
     from .single_image import project as collinearity
@@ -692,23 +768,57 @@ def lsq_dsm_ortho(images: Sequence, eos: Sequence, io, pixel_size: float, grid: 
     S = len(images)
     if isinstance(reference, bool) or not isinstance(reference, (int, np.integer)) or not 0 <= reference < S:
         raise InputError(f"reference must be an image index 0…{S - 1}, got {reference!r}")
+    estimate_eo = bool(estimate_eo)
     P = grid.shape[0] * grid.shape[1]
-    N, M = lsq_unknown_count(P, S)
-    if N > M:
-        raise DegenerateGeometryError(
-            f"§7.8: {S} images give M = {M} equations for N = {N} unknowns (2P + S − 1 with P = {P}): "
-            "the DSM, the orthophoto and the gains are not determined — add a third image")
+    N, M = lsq_unknown_count(P, S, eo_known=not estimate_eo)
+    if estimate_eo:
+        G, g = _gcps(gcp_xyz, gcp_xy, S)
+        try:
+            sg = float(sigma_gcp)
+        except (TypeError, ValueError):
+            raise InputError(f"sigma_gcp must be a number, got {sigma_gcp!r}") from None
+        if not (math.isfinite(sg) and sg > 0):
+            raise InputError(f"sigma_gcp must be positive (pixels), got {sigma_gcp!r}")
+        _datum_check(G, g)
+        m_gcp = 2 * int((~np.isnan(g[..., 0])).sum())
+        if S < 3 or N > M + m_gcp:                      # S = 2: per pixel, F and Z absorb both equations
+            raise DegenerateGeometryError(
+                f"§7.8, (7.8.4): {S} images give M = {M} photometric and {m_gcp} GCP equations for N = {N} "
+                f"unknowns (2P + S − 1 + 6S with P = {P}): "
+                + ("two images never determine the gains and the relative orientation — add a third image"
+                   if S < 3 else "enlarge the grid, add images or GCPs"))
+    else:
+        G, g = np.zeros((0, 3)), np.zeros((S, 0, 2))
+        if N > M:
+            raise DegenerateGeometryError(
+                f"§7.8: {S} images give M = {M} equations for N = {N} unknowns (2P + S − 1 with P = {P}): "
+                "the DSM, the orthophoto and the gains are not determined — add a third image")
     X, Y = (a.ravel() for a in grid.centres())
     grads = [np.gradient(im) for im in images]
-    dxy = height_partials_function(eos[0].order)
+    orders = [eo.order for eo in eos]
+    dxy = [height_partials_function(o) for o in orders]
+    deo = [eo_partials_function(o) for o in orders] if estimate_eo else None
+    q = 7 if estimate_eo else 1
     obs_img = np.repeat(np.arange(S), P)
     obs_pix = np.tile(np.arange(P), S)
+    # GCP rows: one observation (r = 1) per coordinate of every measurement, on fixed "points" P + j
+    gi, gj = np.nonzero(~np.isnan(g[..., 0]))
+    n_gcp_rows = 2 * gi.size
+    if n_gcp_rows:
+        obs_img = np.concatenate([obs_img, np.repeat(gi, 2)])
+        obs_pix = np.concatenate([obs_pix, P + np.repeat(gj, 2)])
+    n_points = P + G.shape[0]
 
-    def positions(Z, check=False):
-        rc, dZ = [], []
-        for i, eo in enumerate(eos):
+    def current(frames):
+        if not estimate_eo:
+            return eos
+        return [ExteriorOrientation(*frames[i, 1:], order=orders[i]) for i in range(S)]
+
+    def positions(Z, eo_now, check=False):
+        rc, dZ, dE = [], [], []
+        for i, eo in enumerate(eo_now):
             pts = np.column_stack([X, Y, Z])
-            cr = image_to_pixel(collinearity(pts, eo, io), images[i].shape, d)
+            cr = image_to_pixel(collinearity(pts, eo, io, distortion=False), images[i].shape, d)
             rows, cols = cr[:, 1], cr[:, 0]
             out = (rows < 0) | (rows > images[i].shape[0] - 1) | (cols < 0) | (cols > images[i].shape[1] - 1)
             if check and out.any():
@@ -716,17 +826,23 @@ def lsq_dsm_ortho(images: Sequence, eos: Sequence, io, pixel_size: float, grid: 
             rows = np.clip(rows, 0, images[i].shape[0] - 1)
             cols = np.clip(cols, 0, images[i].shape[1] - 1)
             v = eo.vector
-            pz = dxy(X, Y, Z, *v, io.f, io.x0, io.y0)
+            pz = dxy[i](X, Y, Z, *v, io.f, io.x0, io.y0)
             rc.append((rows, cols))
             dZ.append((-pz[1] / d, pz[0] / d))                  # d(row)/dZ, d(col)/dZ
-        return rc, dZ
+            if estimate_eo:
+                pe = deo[i](X, Y, Z, *v, io.f, io.x0, io.y0)    # (2, 6, P)
+                dE.append((-pe[1] / d, pe[0] / d))              # d(row)/dEO, d(col)/dEO: (6, P) each
+        return rc, dZ, dE
 
     def linearize(frames, points):
-        F, Z = points[:, 0], points[:, 1]
-        rc, dZ = positions(Z)
-        B1 = np.empty((S * P, 1, 1))
-        B2 = np.zeros((S * P, 1, 3))
-        L = np.empty((S * P, 1))
+        F, Z = points[:P, 0], points[:P, 1]
+        eo_now = current(frames)
+        rc, dZ, dE = positions(Z, eo_now)
+        m = S * P + n_gcp_rows
+        B1 = np.zeros((m, 1, q))
+        B2 = np.zeros((m, 1, 3))
+        L = np.empty((m, 1))
+        W = np.ones((m, 1))
         for i in range(S):
             rows, cols = rc[i]
             fi = resample(images[i], rows, cols)
@@ -734,53 +850,88 @@ def lsq_dsm_ortho(images: Sequence, eos: Sequence, io, pixel_size: float, grid: 
             g_c = resample(grads[i][1], rows, cols)
             k = frames[i, 0]
             s = slice(i * P, (i + 1) * P)
-            B1[s, 0, 0] = -fi
+            B1[s, 0, 0] = 0.0 if (estimate_eo and i == reference) else -fi
+            if estimate_eo:
+                B1[s, 0, 1:] = (-k * (g_r * dE[i][0] + g_c * dE[i][1])).T
             B2[s, 0, 0] = 1.0
             B2[s, 0, 1] = -k * (g_r * dZ[i][0] + g_c * dZ[i][1])
             L[s, 0] = F - k * fi
-        return BlockCorrectionEquations(obs_img, obs_pix, B1, B2, L)
+        if n_gcp_rows:
+            p_gcp = (sigma_f_ / (sg * d)) ** 2
+            for i in range(S):
+                sel = np.flatnonzero(gi == i)
+                if not sel.size:
+                    continue
+                j = gj[sel]
+                xy = collinearity(G[j], eo_now[i], io, distortion=False)
+                pe = deo[i](G[j, 0], G[j, 1], G[j, 2], *eo_now[i].vector, io.f, io.x0, io.y0)   # (2, 6, n)
+                rows_x = S * P + 2 * sel
+                B1[rows_x, 0, 1:] = pe[0].T
+                B1[rows_x + 1, 0, 1:] = pe[1].T
+                L[rows_x, 0] = xy[:, 0] - g[i, j, 0]
+                L[rows_x + 1, 0] = xy[:, 1] - g[i, j, 1]
+                W[rows_x, 0] = W[rows_x + 1, 0] = p_gcp
+        return BlockCorrectionEquations(obs_img, obs_pix, B1, B2, L, W)
 
-    rc, _ = positions(Z0.ravel(), check=True)
+    rc, _, _ = positions(Z0.ravel(), eos, check=True)
     F0 = np.mean([resample(images[i], *rc[i]) for i in range(S)], axis=0)
-    points0 = np.column_stack([F0, Z0.ravel(), np.zeros(P)])
-    free = np.ones(S, bool)
-    free[reference] = False
+    points0 = np.zeros((n_points, 3))
+    points0[:P] = np.column_stack([F0, Z0.ravel(), np.zeros(P)])
+    points0[P:] = G
     try:
-        sz, sf = float(sigma_z0), float(sigma_f)
+        sz, sigma_f_ = float(sigma_z0), float(sigma_f)
     except (TypeError, ValueError):
         raise InputError("sigma_z0 and sigma_f must be numbers") from None
-    if not (sz > 0 and sf > 0 and math.isfinite(sf)):
+    if not (sz > 0 and sigma_f_ > 0 and math.isfinite(sigma_f_)):
         raise InputError(f"sigma_z0 and sigma_f must be positive, got {sigma_z0!r}, {sigma_f!r}")
-    p_z = (sf / sz) ** 2
-    prior = (np.column_stack([np.zeros(P), Z0.ravel(), np.zeros(P)]),
-             np.tile([0.0, p_z, 1.0], (P, 1)))        # Z ≈ z0 (weak), third coordinate = 0
-    frames, points = np.ones((S, 1)), points0.copy()
+    p_z = (sigma_f_ / sz) ** 2
+    p_prior = np.zeros((n_points, 3))
+    p_prior[:P] = [0.0, p_z, 1.0]                       # Z ≈ z0 (weak), third coordinate = 0
+    free_points = np.arange(n_points) < P               # the GCPs are fixed points
+    frames = np.ones((S, q))
+    if estimate_eo:
+        frames[:, 1:] = [eo.vector for eo in eos]
+        free, frame_prior = None, (np.zeros((S, q)), np.zeros((S, q)))
+        frame_prior[1][reference, 0] = 1.0             # δk_ref = 0: a zero column and a direct observation
+    else:
+        free, frame_prior = np.ones(S, bool), None
+        free[reference] = False
+    n_unknowns = 2 * P + q * S - 1                      # the free columns the solver carries
+    height = max(float(np.mean([eo.Zs for eo in eos]) - Z0.mean()), 1e-9)
+    points = points0.copy()
     history = []
     bound, last = np.full(P, float(max_step)), np.zeros(P)
     try:
         for iteration in range(1, int(max_iter) + 1):
             eq = linearize(frames, points)
-            l_prior = np.column_stack([np.zeros(P), points[:, 1] - Z0.ravel(), points[:, 2]])
-            sol = solve_block_normal_equations(eq, S, P, point_prior=(l_prior, prior[1]), free_frames=free,
-                                               dense_limit=64)
-            raw = sol.delta2[:, 1]
+            l_prior = np.zeros((n_points, 3))
+            l_prior[:P] = np.column_stack([np.zeros(P), points[:P, 1] - Z0.ravel(), points[:P, 2]])
+            sol = solve_block_normal_equations(eq, S, n_points, point_prior=(l_prior, p_prior), free_frames=free,
+                                               frame_prior=frame_prior, free_points=free_points, dense_limit=64)
+            raw = sol.delta2[:P, 1]
             flip = (np.sign(raw) * np.sign(last) < 0) & (np.abs(raw) > tol_z)
             bound = np.where(flip, bound / 2, bound)          # a pixel oscillating: halve its step
             dZ = np.clip(raw, -bound, bound)
             last = dZ
             frames = frames + sol.delta1
-            points[:, 0] += sol.delta2[:, 0]
-            points[:, 1] += dZ
-            vtpv = float(np.sum(eq.L ** 2))
+            points[:P, 0] += sol.delta2[:P, 0]
+            points[:P, 1] += dZ
+            vtpv = float(np.sum(eq.P * eq.L ** 2))
             rms_dz = float(np.sqrt(np.mean(dZ ** 2)))
-            record = IterationRecord(iteration, np.concatenate([frames.ravel(), points[:, :2].ravel()]),
-                                     np.array([np.abs(sol.delta1).max(), rms_dz]), vtpv)
+            deltas = [np.abs(sol.delta1[:, 0]).max(), rms_dz]
+            done = rms_dz < tol_z
+            if estimate_eo:
+                d_centre, d_angle = np.abs(sol.delta1[:, 1:4]).max(), np.abs(sol.delta1[:, 4:]).max()
+                deltas += [d_centre, d_angle]
+                done = done and d_centre < tol_z and d_angle < tol_z / height
+            record = IterationRecord(iteration, np.concatenate([frames.ravel(), points[:P, :2].ravel()]),
+                                     np.array(deltas), vtpv)
             history.append(record)
             if progress is not None:
                 progress(record)
-            if not np.all(np.isfinite(points)):
+            if not (np.all(np.isfinite(points)) and np.all(np.isfinite(frames))):
                 raise ConvergenceError(f"§7.8: NaN/inf at iteration {iteration}", history)
-            if rms_dz < tol_z:
+            if done:
                 break
         else:
             raise ConvergenceError(f"§7.8: no convergence in {max_iter} iterations (RMS δZ = {rms_dz:.3g})", history)
@@ -788,8 +939,10 @@ def lsq_dsm_ortho(images: Sequence, eos: Sequence, io, pixel_size: float, grid: 
         raise DegenerateGeometryError(f"§7.8: the least-squares DSM is not determined ({exc}); "
                                       "textureless pixels or too few images") from None
     eq = linearize(frames, points)
-    adj = Adjustment(np.concatenate([frames.ravel(), points[:, :2].ravel()]), eq.L.copy(),
-                     float(np.sqrt(np.sum(eq.L ** 2) / max(M - N, 1))), None, None, None, M - N, len(history),
+    m_total = S * P + n_gcp_rows
+    dof = m_total - n_unknowns
+    adj = Adjustment(np.concatenate([frames.ravel(), points[:P, :2].ravel()]), eq.L.copy(),
+                     float(np.sqrt(np.sum(eq.P * eq.L ** 2) / max(dof, 1))), None, None, None, dof, len(history),
                      history=history, frames=frames.copy(), points=points.copy())
-    return LsqOrtho(points[:, 0].reshape(grid.shape), points[:, 1].reshape(grid.shape), frames[:, 0].copy(),
-                    adj, (N, M))
+    return LsqOrtho(points[:P, 0].reshape(grid.shape), points[:P, 1].reshape(grid.shape), frames[:, 0].copy(),
+                    adj, (N, M), tuple(current(frames)))

@@ -1,5 +1,5 @@
 """Chapter 7, §7.5, §7.6, §7.8 (true orthophotos, point clouds, the least-squares DSM): formula
-checks, Fig. 7.12 and the §7.8 counts.
+checks, Fig. 7.12, the §7.8 counts and the datum defect of (7.8.4).
 
 Adapters for the entries of ``textbook/ch07_trueortho.toml``. Formula adapters take the printed
 formula (sympy text or a reading of the text) in ``inputs`` and return
@@ -215,3 +215,67 @@ def two_images_refused(inputs: dict) -> dict:
     except DegenerateGeometryError:
         return {"S = 2 solvable": "no"}
     return {"S = 2 solvable": "yes"}
+
+
+def datum_defect(inputs: dict) -> dict:
+    """Rank defect of the linearised (7.8.4) system at the solution, without and with GCPs.
+
+    An analytic scene: a smooth surface Z(X, Y) with a texture F(X, Y), S images with gains; at
+    the solution f_i(x, y) = F/k_i on the surface, so the image gradient is ∇F·(∂(x, y)/∂(X, Y) along
+    the surface)⁻¹/k_i. The columns are F, Z per pixel, k_i and the six EO elements per image
+    (a₁…a₉ of (7.8.4); EO partials from :func:`photolib.derivations.orthophoto.eo_partials_function`);
+    the rank defect is counted from the singular values (relative threshold 1e-9).
+    """
+    from ..camera import ExteriorOrientation, InteriorOrientation
+    from ..derivations.orthophoto import eo_partials_function, height_partials_function
+    from ..single_image import project
+    n, S, H = int(inputs["side"]), int(inputs["images"]), float(inputs["height"])
+    io = InteriorOrientation(50.0)
+    X, Y = (a.ravel() for a in np.meshgrid(np.linspace(-10, 10, n), np.linspace(-10, 10, n)))
+    Z = 2.0 + 0.05 * X - 0.03 * Y + 0.01 * X * Y + 0.02 * X ** 2
+    ZX, ZY = 0.05 + 0.01 * Y + 0.04 * X, -0.03 + 0.01 * X
+    F = 0.5 + 0.2 * np.sin(0.9 * X + 0.3) * np.cos(0.7 * Y - 0.2)
+    FX = 0.2 * 0.9 * np.cos(0.9 * X + 0.3) * np.cos(0.7 * Y - 0.2)
+    FY = -0.2 * 0.7 * np.sin(0.9 * X + 0.3) * np.sin(0.7 * Y - 0.2)
+    P = X.size
+    eos = [ExteriorOrientation(30 * np.cos(a), 30 * np.sin(a), H, 0.01 * s, -0.02 * s, 0.03 * s)
+           for s, a in enumerate(np.linspace(0, 2 * np.pi, S, endpoint=False))]
+    gains = 1.0 + 0.1 * np.arange(S)
+    rows = []
+    for i, eo in enumerate(eos):
+        hz = height_partials_function(eo.order)(X, Y, Z, *eo.vector, io.f, io.x0, io.y0)      # (2, P)
+        pe = eo_partials_function(eo.order)(X, Y, Z, *eo.vector, io.f, io.x0, io.y0)         # (2, 6, P)
+        h = 1e-6                                    # ∂(x, y)/∂(X, Y) at fixed Z, by central differences
+        J = np.empty((P, 2, 2))
+        for c, (dx, dy) in enumerate(((h, 0.0), (0.0, h))):
+            up = project(np.column_stack([X + dx, Y + dy, Z]), eo, io)
+            dn = project(np.column_stack([X - dx, Y - dy, Z]), eo, io)
+            J[:, :, c] = (up - dn) / (2 * h)
+        Js = J + hz.T[:, :, None] * np.stack([ZX, ZY], axis=1)[:, None, :]   # along the surface
+        g = np.einsum("pj,pji->pi", np.column_stack([FX, FY]), np.linalg.inv(Js)) * gains[i]   # ∇f_i, f_i = F/k_i
+        k = 1.0 / gains[i]                          # F = k_i f_i
+        B = np.zeros((P, 2 * P + 7 * S))
+        B[np.arange(P), 2 * np.arange(P)] = 1.0
+        B[np.arange(P), 2 * np.arange(P) + 1] = -k * np.einsum("pi,ip->p", g, hz)
+        B[:, 2 * P + 7 * i] = -F / k                # −f_i
+        B[:, 2 * P + 7 * i + 1:2 * P + 7 * i + 7] = -k * np.einsum("pi,ijp->pj", g, pe)
+        rows.append(B)
+    B = np.vstack(rows)
+    gcp = np.array([[-8.0, -8.0, 1.0], [8.0, -6.0, 3.0], [-5.0, 9.0, 2.0]])
+    gcp_rows = []                                   # collinearity (7.8.2) of the GCPs: EO columns only
+    for i, eo in enumerate(eos):
+        pe = eo_partials_function(eo.order)(gcp[:, 0], gcp[:, 1], gcp[:, 2], *eo.vector, io.f, io.x0, io.y0)
+        R = np.zeros((2 * len(gcp), B.shape[1]))
+        R[:, 2 * P + 7 * i + 1:2 * P + 7 * i + 7] = np.concatenate([pe[0].T, pe[1].T])
+        gcp_rows.append(R.reshape(2, len(gcp), -1).transpose(1, 0, 2))            # (GCP, x/y, column)
+
+    def defect(M):
+        M = np.delete(M, 2 * P, axis=1)             # the reference gain k_0 = 1
+        sv = np.linalg.svd(M / np.linalg.norm(M, axis=0), compute_uv=False)
+        return int(np.sum(sv < 1e-7 * sv[0])) + (M.shape[1] - sv.size)
+
+    with_gcps = lambda k: np.vstack([B] + [R[:k].reshape(-1, B.shape[1]) for R in gcp_rows])
+    d0 = defect(B)
+    return {"unknowns N": B.shape[1] - 1, "equations M": B.shape[0], "datum defect": d0,
+            "GCP equations needed": "yes" if d0 > 0 else "no",
+            "defect with 2 GCPs": defect(with_gcps(2)), "defect with 3 GCPs": defect(with_gcps(3))}

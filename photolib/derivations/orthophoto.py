@@ -8,7 +8,12 @@
   here by the chain rule with the image brightness f_i kept as an unknown function of x, y
   (:func:`correction_coefficients`);
 * ∂x/∂Z, ∂y/∂Z as numpy code for :func:`photolib.trueortho.lsq_dsm_ortho`
-  (:func:`height_partials_function`, lambdified lazily).
+  (:func:`height_partials_function`, lambdified lazily);
+* for (7.8.4), the partials of x_i, y_i by the six EO elements, which are those of the
+  resection model of Chapter 1 (:func:`photolib.derivations.collinearity.collinearity_model`,
+  reused, not re-derived): :func:`eo_partials_function` (numpy) and :func:`check_784_chain_rule`
+  (sympy: a₄…a₉ of (7.8.4) = −k_i(∂f_i/∂x·∂x/∂p + ∂f_i/∂y·∂y/∂p) with ∂x/∂p, ∂y/∂p the
+  Chapter 1 coefficients a₁…b₆ of (1.8.3)).
 """
 
 from __future__ import annotations
@@ -23,7 +28,7 @@ from .symbols import X, Xs, Y, Ys, Z, Zs, alpha, f, kappa, omega, x0, y0
 
 __all__ = ["F_sym", "k_sym", "image_function", "photometric_condition", "collinearity_782",
            "collinearity_732", "check_782_equals_732", "height_partials", "correction_coefficients",
-           "height_partials_function"]
+           "height_partials_function", "eo_partials_function", "check_784_chain_rule"]
 
 F_sym, k_sym = sp.symbols("F k_i", real=True)
 """The orthophoto brightness F and the photometric gain k_i of image i (7.8.1)."""
@@ -267,4 +272,99 @@ def height_partials_function(order: str = "kaw"):
 
     def partials(*values):
         return np.stack(np.broadcast_arrays(*[np.asarray(v, dtype=float) for v in fn(*values)]))
+    return partials
+
+
+def check_784_chain_rule(order: str = "kaw") -> bool:
+    """True when a₄…a₉ of (7.8.4) are −k_i(∂f_i/∂x·∂x/∂p + ∂f_i/∂y·∂y/∂p) with the Chapter 1 partials.
+
+    The coefficients of :func:`correction_coefficients` (``eo_unknown=True``) by X_S, Y_S, Z_S,
+    α, ω, κ are compared, with the image brightness replaced by a linear function of gradient
+    (g_x, g_y), against the Jacobian of the collinearity model of §1.8
+    (:func:`photolib.derivations.collinearity.collinearity_model`, the coefficients a₁…b₆ of
+    (1.8.3)); so the photometric equations and the GCP equations share one derivation.
+
+    Parameters
+    ----------
+    order : {"kaw", "wak"}
+        Rotation sequence of A.
+
+    Returns
+    -------
+    bool
+
+    Raises
+    ------
+    InputError
+        An unknown order.
+
+    References
+    ----------
+    Chibunichev (2022), §7.8, eq. (7.8.4); §1.8, eqs. (1.8.2)–(1.8.3).
+
+    Examples
+    --------
+    >>> check_784_chain_rule("kaw")
+    True
+    """
+    from .collinearity import collinearity_model
+    order = _order(order)
+    c = correction_coefficients(eo_unknown=True, order=order)
+    gx, gy, u, v = sp.symbols("g_x g_y u v", real=True)
+    linear = sp.Lambda((u, v), gx * u + gy * v)
+    model = collinearity_model(order)
+    J = model.jacobian()                                  # rows F_x, F_y; columns X_S, Y_S, Z_S, ω, α, κ
+    column = {s: j for j, s in enumerate(model.parameters)}
+    xe, ye = collinearity_732(order)
+    back = {_xs: xe, _ys: ye}
+    for name, p in zip(("a4", "a5", "a6", "a7", "a8", "a9"), (Xs, Ys, Zs, alpha, omega, kappa)):
+        got = c[name].subs(back).subs(image_function, linear).doit()
+        want = -k_sym * (gx * J[0, column[p]] + gy * J[1, column[p]])
+        if sp.expand(got - want) != 0 and sp.simplify(got - want) != 0:
+            return False
+    return True
+
+
+@lru_cache(maxsize=None)
+def eo_partials_function(order: str = "kaw"):
+    """numpy function (X, Y, Z, X_S, Y_S, Z_S, ω, α, κ, f, x₀, y₀) → ∂(x, y)/∂(X_S, Y_S, Z_S, ω, α, κ).
+
+    The compiled Jacobian of the collinearity model of §1.8
+    (:func:`photolib.derivations.collinearity.collinearity_model`) — the same code the resection
+    and the bundle adjustment use; here for the columns a₄…a₉ of (7.8.4) (times −k_i and the image
+    gradient) and for the GCP collinearity equations that (7.8.4) needs.
+
+    Parameters
+    ----------
+    order : {"kaw", "wak"}
+        Rotation sequence of the angles.
+
+    Returns
+    -------
+    callable
+        Returns a (2, 6, …) array: [∂x/∂p, ∂y/∂p] for p = X_S, Y_S, Z_S, ω, α, κ.
+
+    Raises
+    ------
+    InputError
+        An unknown order.
+
+    References
+    ----------
+    Chibunichev (2022), §7.8, eq. (7.8.4); §1.8, eq. (1.8.3).
+
+    Examples
+    --------
+    >>> fn = eo_partials_function("kaw")
+    >>> [round(float(v), 6) for v in fn(10.0, 0.0, 0.0, 0.0, 0.0, 100.0, 0.0, 0.0, 0.0, 50.0, 0.0, 0.0)[0, :3]]
+    [-0.5, 0.0, -0.05]
+    """
+    import numpy as np
+    from .collinearity import collinearity_model
+    _, jacobian = collinearity_model(_order(order)).compile()
+
+    def partials(X, Y, Z, Xs_, Ys_, Zs_, om, al, ka, f_, x0_, y0_):
+        J = jacobian(Xs_, Ys_, Zs_, om, al, ka, X, Y, Z, 0.0, 0.0, f_, x0_, y0_)
+        J = np.asarray(J, dtype=float)
+        return J.reshape((2, 6) + J.shape[1:])
     return partials

@@ -63,3 +63,11 @@ def test_every_entry_of_the_fragment_verifies():
         assert check_formula(f).ok, f.id
     for e in examples:
         assert all(row.ok for row in check_example(e)), e.id
+
+
+def test_datum_defect_of_784_is_seven_and_three_gcps_remove_it():
+    for images in (3, 4):
+        r = c.datum_defect({"side": 6, "images": images, "height": 200.0})
+        assert r["unknowns N"] == 2 * 36 + (images - 1) + 6 * images           # the book's count
+        assert (r["datum defect"], r["defect with 2 GCPs"], r["defect with 3 GCPs"]) == (7, 1, 0)
+        assert r["GCP equations needed"] == "yes"

@@ -25,6 +25,8 @@ EO = [ExteriorOrientation(0.0, 0.0, 100.0)] * 3
 IO = InteriorOrientation(50.0)
 SMALL = RasterGrid(-1.0, 1.0, 1.0, (2, 2))
 IMS = [np.random.default_rng(i).uniform(size=(30, 30)) for i in range(3)]
+GCP = np.array([[-1.0, -1.0, 0.0], [1.0, -1.0, 3.0], [-1.0, 1.0, 1.0], [1.0, 1.0, 0.5]])
+GXY = np.tile(GCP[:, :2] * 0.5, (3, 1, 1))
 
 CASES = [
     # visibility_mask
@@ -95,6 +97,31 @@ CASES = [
          {"sigma_z0": INF}, raises=DegenerateGeometryError, why="textureless images"),
     Case(lsq_dsm_ortho, (IMS, EO, IO, 0.1, SMALL, np.zeros((2, 2))), {"sigma_f": NAN}, raises=InputError,
          why="NaN sigma"),
+    # lsq_dsm_ortho with unknown EO (7.8.4)
+    Case(lsq_dsm_ortho, (IMS, EO, IO, 0.1, SMALL, np.zeros((2, 2))), {"estimate_eo": True},
+         raises=DegenerateGeometryError, match="datum defect of 7", why="unknown EO without GCPs"),
+    Case(lsq_dsm_ortho, (IMS, EO, IO, 0.1, SMALL, np.zeros((2, 2))),
+         {"estimate_eo": True, "gcp_xyz": GCP[:2], "gcp_xy": GXY[:, :2]},
+         raises=DegenerateGeometryError, match="datum defect", why="two GCPs only"),
+    Case(lsq_dsm_ortho, (IMS[:2], EO[:2], IO, 0.1, SMALL, np.zeros((2, 2))),
+         {"estimate_eo": True, "gcp_xyz": GCP, "gcp_xy": GXY[:2]}, raises=DegenerateGeometryError,
+         match="third image", why="two images with unknown EO, even with GCPs"),
+    Case(lsq_dsm_ortho, (IMS, EO, IO, 0.1, SMALL, np.zeros((2, 2))), {"estimate_eo": True, "gcp_xyz": GCP},
+         raises=InputError, match="neither", why="GCP ground coordinates without image measurements"),
+    Case(lsq_dsm_ortho, (IMS, EO, IO, 0.1, SMALL, np.zeros((2, 2))),
+         {"estimate_eo": True, "gcp_xyz": GCP, "gcp_xy": GXY[:2]}, raises=InputError,
+         why="measurements for 2 of 3 images"),
+    Case(lsq_dsm_ortho, (IMS, EO, IO, 0.1, SMALL, np.zeros((2, 2))),
+         {"estimate_eo": True, "gcp_xyz": GCP[:, :2], "gcp_xy": GXY}, raises=InputError, why="(n, 2) GCPs"),
+    Case(lsq_dsm_ortho, (IMS, EO, IO, 0.1, SMALL, np.zeros((2, 2))),
+         {"estimate_eo": True, "gcp_xyz": np.where(GCP == 3.0, NAN, GCP), "gcp_xy": GXY}, raises=InputError,
+         why="NaN GCP"),
+    Case(lsq_dsm_ortho, (IMS, EO, IO, 0.1, SMALL, np.zeros((2, 2))),
+         {"estimate_eo": True, "gcp_xyz": GCP, "gcp_xy": np.where(GXY == GXY[0, 0, 0], INF, GXY)},
+         raises=InputError, why="inf measurement"),
+    Case(lsq_dsm_ortho, (IMS, EO, IO, 0.1, SMALL, np.zeros((2, 2))),
+         {"estimate_eo": True, "gcp_xyz": GCP, "gcp_xy": GXY, "sigma_gcp": -1.0}, raises=InputError,
+         why="negative sigma_gcp"),
     # result classes
     Case(TrueOrtho, (np.zeros((1, 1)), np.zeros((1, 1), int), np.zeros((1, 1)), np.ones((1, 1, 1))), raises=None,
          check=lambda t: t.source.shape == (1, 1), why="plain container"),
@@ -105,6 +132,8 @@ CASES = [
     Case(d.check_782_equals_732, ("abc",), raises=InputError, why="unknown rotation order"),
     Case(d.correction_coefficients, (False, "xyz"), raises=InputError, why="unknown rotation order"),
     Case(d.height_partials_function, ("zzz",), raises=InputError, why="unknown rotation order"),
+    Case(d.eo_partials_function, ("zzz",), raises=InputError, why="unknown rotation order"),
+    Case(d.check_784_chain_rule, ("abc",), raises=InputError, why="unknown rotation order"),
     Case(d.photometric_condition, (), raises=None, check=lambda e: e.has(d.F_sym), why="no arguments"),
     Case(d.collinearity_782, (), raises=None, check=lambda xy: len(xy) == 2, why="no arguments"),
     Case(d.height_partials, (), raises=None, check=lambda h: "dx_dZ" in h, why="no arguments"),

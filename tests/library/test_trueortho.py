@@ -272,3 +272,74 @@ def test_single_image_over_a_dense_dsm_blanks_exactly_the_restricted_pixels(town
     assert np.all(np.isnan(one.image[dead]))
     truth = dem_height(albedo, dgrid, X, Y)
     assert np.mean(np.abs(one.image[~dead] - truth[~dead]) > 0.1) < 0.01
+
+
+# --- §7.8 unknown exterior orientation (7.8.4) ------------------------------------------------------
+def test_eo_partials_are_the_chapter_1_collinearity_partials():
+    """a₄…a₉ of (7.8.4) by the chain rule through the §1.8 model (sympy) and its numpy code (finite differences)."""
+    assert d.check_784_chain_rule("kaw") and d.check_784_chain_rule("wak")
+    from photolib.single_image import project
+    io = InteriorOrientation(50.0, 0.01, -0.02)
+    P = np.array([[10.0, 5.0, 20.0], [-30.0, 12.0, 5.0]])
+    for order in ("kaw", "wak"):
+        eo = ExteriorOrientation(3.0, -2.0, 150.0, 0.05, -0.2, 0.3, order=order)
+        got = d.eo_partials_function(order)(P[:, 0], P[:, 1], P[:, 2], *eo.vector, io.f, io.x0, io.y0)
+        for j in range(6):
+            h = 1e-4 if j < 3 else 1e-7
+            up, dn = eo.vector.copy(), eo.vector.copy()
+            up[j] += h
+            dn[j] -= h
+            fd = (project(P, ExteriorOrientation(*up, order=order), io, distortion=False)
+                  - project(P, ExteriorOrientation(*dn, order=order), io, distortion=False)) / (2 * h)
+            assert np.allclose(got[:, j].T, fd, rtol=1e-5, atol=1e-8), (order, j)
+
+
+def _gcps(eos, io):
+    """Five ground control points on the scene surface and their exact image coordinates (mm)."""
+    from photolib.single_image import project
+    sc = terrain_scene(extent=40.0, spacing=0.5, n_buildings=0, relief=6.0, relief_scale=15.0, texture_scale=1.5,
+                       seed=3)
+    xy = np.array([[8.0, 8.0], [32.0, 8.0], [8.0, 32.0], [32.0, 32.0], [20.0, 20.0]])
+    G = np.column_stack([xy, dem_height(sc.surface[::-1], scene_grid(sc), xy[:, 0], xy[:, 1])])
+    return G, np.stack([project(G, eo, io) for eo in eos])
+
+
+def test_lsq_unknown_eo_recovers_the_orientation_and_the_dsm(lsq_scene):
+    images, eos, io, grid, Zt, Ft, z0 = lsq_scene
+    G, meas = _gcps(eos, io)
+    rng = np.random.default_rng(7)
+    start = [ExteriorOrientation(*(eo.vector + np.r_[rng.choice([-1, 1], 3) * 0.5, rng.choice([-1, 1], 3) * 1e-3]))
+             for eo in eos]                                   # 0.5 m in the centres, 1 mrad in the angles
+    known = lsq_dsm_ortho(images, eos, io, 0.04, grid, z0, sigma_z0=20.0)
+    res = lsq_dsm_ortho(images, start, io, 0.04, grid, z0, sigma_z0=20.0, estimate_eo=True, gcp_xyz=G, gcp_xy=meas,
+                        sigma_gcp=0.1)
+    centre = np.abs([e.center - t.center for e, t in zip(res.eos, eos)])
+    angle = np.abs([e.vector[3:] - t.vector[3:] for e, t in zip(res.eos, eos)])
+    assert centre.max() < 0.02 and angle.max() < 1e-4          # from 0.5 m and 1e-3 rad
+    e_known, e = np.median(np.abs(known.dsm - Zt)), np.median(np.abs(res.dsm - Zt))
+    assert e < 0.02 * np.median(np.abs(z0 - Zt)) and e < 1.5 * e_known
+    assert res.gains[0] == 1.0 and res.gains[1:] == pytest.approx([1 / 1.15, 1 / 0.9], abs=2e-3)
+    # the solver carries exactly N = 2P + (S − 1) + 6S unknowns: dof = photometric + GCP rows − N
+    P, S = 32 * 32, 3
+    N, M = lsq_unknown_count(P, S, eo_known=False)
+    assert res.counts == (N, M) and res.adjustment.frames.shape == (S, 7)
+    assert res.adjustment.dof == M + 2 * G.shape[0] * S - N
+
+
+@pytest.mark.parametrize("n_gcp", [0, 2])
+def test_lsq_unknown_eo_without_enough_gcps_names_the_datum_defect(lsq_scene, n_gcp):
+    images, eos, io, grid, Zt, Ft, z0 = lsq_scene
+    G, meas = _gcps(eos, io)
+    kw = {} if n_gcp == 0 else {"gcp_xyz": G[:n_gcp], "gcp_xy": meas[:, :n_gcp]}
+    with pytest.raises(DegenerateGeometryError, match="datum defect of 7"):
+        lsq_dsm_ortho(images, eos, io, 0.04, grid, z0, estimate_eo=True, **kw)
+
+
+def test_lsq_unknown_eo_collinear_gcps_are_refused(lsq_scene):
+    images, eos, io, grid, Zt, Ft, z0 = lsq_scene
+    G, meas = _gcps(eos, io)
+    line = [0, 3, 4]                                          # (8, 8), (32, 32), (20, 20): one line in plan
+    G2 = G[line].copy()
+    G2[:, 2] = G2[:, 0]                                       # and in space
+    with pytest.raises(DegenerateGeometryError, match="collinear"):
+        lsq_dsm_ortho(images, eos, io, 0.04, grid, z0, estimate_eo=True, gcp_xyz=G2, gcp_xy=meas[:, line])
