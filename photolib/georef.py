@@ -26,8 +26,9 @@ equations (8.15.1) of tie and control points plus the GNSS/IMU observation equat
 fixed centres (with an optional constant offset, e.g. a boresight/lever-arm bias) are adjusted by
 :func:`photolib.lsq.gauss_newton` (:func:`fixed_centre_triangulation`; Jacobians from sympy in
 :mod:`photolib.derivations.georef`). :class:`TabulatedLineScanner` is a line scanner whose
-per-line EO is a table (GNSS/IMU or the result of (8.15.2)); :func:`three_line_block` simulates a
-small block with known offsets.
+per-line EO is a table (GNSS/IMU or the result of (8.15.2)) — a millimetre-unit front of the one
+scanner model, :class:`photolib.pushbroom.Pushbroom` with an :class:`photolib.pushbroom.EOTable`;
+:func:`three_line_block` simulates a small block with known offsets.
 
 §8.16 (scanner orthophotos). :func:`direct_orthorectify` — the direct method: every scanner
 pixel is monoplotted onto the DEM by the (8.16.1)/(7.7.1) iteration and its brightness moved to
@@ -463,10 +464,12 @@ def interpolate_fixed_centres(t, t_fixed, eo_fixed, measured=None, measured_fixe
 class TabulatedLineScanner:
     """A line (pushbroom) scanner whose EO is tabulated per line — §8.15 (after triangulation), §8.16.
 
-    Row r of the image is the line exposed at time r (in line periods); its EO is the table
-    row r (linearly interpolated between rows for a fractional r). Column c lies on the CCD line
-    at y = (c − (n_cols − 1)/2)·pixel_size (mm, origin at the line's middle); the line is offset
-    along track by ``x_line`` in the focal plane, so the sensor ray is (x_line, y, −f), (8.2.1).
+    A thin millimetre-unit front of the one scanner model, :class:`photolib.pushbroom.Pushbroom`
+    with an :class:`photolib.pushbroom.EOTable` (``sensor``): row r of the image is the line exposed
+    at time r (in line periods); its EO is the table row r (linearly interpolated between rows for a
+    fractional r, extrapolated linearly by the end segments outside the table). Column c lies on the
+    CCD line at y = (c − (n_cols − 1)/2)·pixel_size (mm, origin at the line's middle); the line is
+    offset along track by ``x_line`` in the focal plane, so the sensor ray is (x_line, y, −f), (8.2.1).
 
     Parameters
     ----------
@@ -487,6 +490,8 @@ class TabulatedLineScanner:
     ----------
     shape : tuple
         (n_lines, n_cols).
+    sensor : photolib.pushbroom.Pushbroom
+        The sensor in metres (line period 1), usable wherever a Pushbroom is.
 
     Raises
     ------
@@ -509,9 +514,7 @@ class TabulatedLineScanner:
     """
 
     def __init__(self, eo, f, pixel_size, n_cols, x_line=0.0, order="wak"):
-        self.eo = _array(eo, "eo", (6,), 2)
-        if len(self.eo) < 2:
-            raise InputError("a line scanner needs at least 2 lines")
+        from .pushbroom import EOTable, Pushbroom
         self.f = _positive(f, "f")
         self.pixel_size = _positive(pixel_size, "pixel_size")
         if isinstance(n_cols, (bool, np.bool_)) or not isinstance(n_cols, (int, np.integer)) or n_cols < 2:
@@ -519,7 +522,10 @@ class TabulatedLineScanner:
         self.n_cols = int(n_cols)
         self.x_line = float(_array(x_line, "x_line", ndim=0))
         self.order = _order(order)
-        self._A = _rot(self.eo[:, 3:], self.order)
+        table = EOTable(_array(eo, "eo", (6,), 2), 1.0, self.order)
+        self.eo = table.table
+        self.sensor = Pushbroom(self.f / 1000, self.pixel_size / 1000, self.n_cols, 1.0, table,
+                                x_offsets=self.x_line / 1000)
 
     @property
     def shape(self):
@@ -527,73 +533,25 @@ class TabulatedLineScanner:
 
     def line_eo(self, rows):
         """EO of (fractional) rows: S (…, 3) and A (…, 3, 3), linear between table rows."""
-        r = np.clip(np.asarray(rows, dtype=np.float64), 0, len(self.eo) - 1)
-        i = np.clip(np.floor(r).astype(np.int64), 0, len(self.eo) - 2)
-        w = (r - i)[..., None]
-        E = (1 - w) * self.eo[i] + w * self.eo[i + 1]
-        return E[..., :3], _rot(E[..., 3:], self.order)
+        rows = np.asarray(rows, dtype=np.float64)
+        S, A = self.sensor.eo.at(rows)
+        return S.reshape(rows.shape + (3,)), A.reshape(rows.shape + (3, 3))
 
     def ground(self, rows, cols, Z):
         """Object X, Y of image positions on the heights Z, (8.5.1)/(8.16.1).
 
         Returns (X, Y) arrays of the broadcast shape; NaN for rays that do not reach Z.
         """
-        rows, cols, Z = np.broadcast_arrays(*(np.asarray(v, dtype=np.float64) for v in (rows, cols, Z)))
-        S, A = self.line_eo(rows)
-        y = (cols - (self.n_cols - 1) / 2) * self.pixel_size
-        r = np.stack([np.full(y.shape, self.x_line), y, np.full(y.shape, -self.f)], axis=-1)
-        W = np.einsum("...ij,...j->...i", A, r)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            N = (Z - S[..., 2]) / W[..., 2]
-        N = np.where(N > 0, N, np.nan)
-        return S[..., 0] + N * W[..., 0], S[..., 1] + N * W[..., 1]
-
-    def _g(self, rows, P):
-        S, A = self.line_eo(rows)
-        u = np.einsum("...ji,...j->...i", A, P - S)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return -self.f * u[..., 0] / u[..., 2] - self.x_line, -self.f * u[..., 1] / u[..., 2], u[..., 2]
+        return self.sensor.ground(rows, cols, Z, invalid="nan")
 
     def project(self, X, Y, Z, *, tol=1e-9, max_iter=60):
         """Image (rows, cols) of object points, (8.5.2): a bracketed 1-D search for the line.
 
-        The row is the root of x(row) − x_line = 0 (the point lies in the line's plane of
-        rays), bracketed on a coarse scan of the lines and refined by safeguarded Newton steps.
-        Points that no line sees (or behind the sensor) get NaN (see :meth:`projector`).
+        :meth:`photolib.pushbroom.Pushbroom.project` with ``bracket=True``: the line is bracketed
+        on a coarse scan of the table and refined by safeguarded Newton steps. Points that no line
+        sees (or behind the sensor) get NaN (see :meth:`projector`).
         """
-        X, Y, Z = np.broadcast_arrays(*(np.asarray(v, dtype=np.float64) for v in (X, Y, Z)))
-        shape = X.shape
-        P = np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)
-        n = len(self.eo)
-        samples = np.unique(np.linspace(0, n - 1, min(n, 17)).round())
-        g = np.stack([self._g(np.full(len(P), s), P)[0] for s in samples], axis=1)
-        ok = np.isfinite(g)
-        sign = (g[:, :-1] * g[:, 1:] <= 0) & ok[:, :-1] & ok[:, 1:]
-        has = sign.any(axis=1)
-        j = np.argmax(sign, axis=1)
-        lo, hi = samples[j].astype(float), samples[np.minimum(j + 1, len(samples) - 1)].astype(float)
-        glo = g[np.arange(len(P)), j]
-        r = 0.5 * (lo + hi)
-        for _ in range(max_iter):
-            gr = self._g(r, P)[0]
-            same = np.sign(gr) == np.sign(glo)
-            lo, glo = np.where(same, r, lo), np.where(same, gr, glo)
-            hi = np.where(same, hi, r)
-            h = 1e-3
-            d = (self._g(r + h, P)[0] - gr) / h
-            with np.errstate(divide="ignore", invalid="ignore"):
-                step = r - gr / d
-            inside = np.isfinite(step) & (step >= lo) & (step <= hi)
-            new = np.where(inside, step, 0.5 * (lo + hi))
-            done = np.abs(new - r) < tol
-            r = new
-            if np.all(done | ~has):
-                break
-        _, y, u2 = self._g(r, P)
-        valid = has & (u2 < 0)
-        rows = np.where(valid, r, np.nan)
-        cols = np.where(valid, y / self.pixel_size + (self.n_cols - 1) / 2, np.nan)
-        return rows.reshape(shape), cols.reshape(shape)
+        return self.sensor.project(X, Y, Z, tol=tol, max_iter=max_iter, bracket=True)
 
     def projector(self, outside=-1e9):
         """``project(X, Y, Z) -> (rows, cols)`` for :func:`photolib.rectify.orthorectify`: points no

@@ -1,4 +1,4 @@
-"""Scanner sensor models — Chapter 8, §8.1–8.5, §8.7 and §8.8 (cases 1–3).
+"""Scanner sensor models — Chapter 8, §8.1–8.5, §8.7, §8.8 (cases 1–3) and the line EO table of §8.15.
 
 Frames and conventions (the book's, made explicit):
 
@@ -15,10 +15,13 @@ Frames and conventions (the book's, made explicit):
   (X_S0, Y_S0, Z_S0, ω0, α0, κ0, k₁…k₆[, d₁…d₆]) — the order of (8.5.3); the book lists the angles
   as (α, ω, κ) in (8.8.6), which is only the order of the list. A = A_ω A_α A_κ of (1.3.2)
   (``rotation_matrix(..., order="wak")``) maps the scanner frame to the object frame. Angles in
-  radians, rates per second, times in seconds.
+  radians, rates per second, times in seconds. Or, as measured by GNSS/IMU or adjusted by (8.15.2),
+  a **table of line EO** (:class:`EOTable`), interpolated linearly between lines; both feed the
+  one sensor type :class:`Pushbroom` (:class:`photolib.georef.TabulatedLineScanner` wraps it).
 
 Contents: rays (8.2.1)/(8.2.2), staggered layouts (Fig. 8.4), whiskbroom (8.3.1), three-line
-cameras (8.4.2)/(8.4.3), tilted focal lengths (8.4.1); :class:`EOPolynomial`; :class:`Pushbroom`
+cameras (8.4.2)/(8.4.3), tilted focal lengths (8.4.1); :class:`EOPolynomial` and the per-line
+table :class:`EOTable` (GNSS/IMU, §8.15); :class:`Pushbroom`
 (image → ground at Z (8.5.1)/(8.7.1), ground → image by a Newton search for the line (8.5.2),
 monoplotting over a DEM (8.7.1), a projector for orthorectification); the time-polynomial
 resection on GCPs (8.5.2)–(8.5.5) with the flat-terrain ambiguity of Fig. 8.14; the approximating
@@ -40,7 +43,7 @@ from .lsq import Adjustment, gauss_newton, solve_normal_equations
 from .rotation import rotation_matrix
 
 __all__ = ["EO_NAMES", "ray_linear_ccd", "staggered_offsets", "ray_whiskbroom", "ray_three_line",
-           "tilted_focal_length", "EOPolynomial", "Pushbroom", "PushbroomResection", "resect_pushbroom",
+           "tilted_focal_length", "EOPolynomial", "EOTable", "Pushbroom", "PushbroomResection", "resect_pushbroom",
            "resection_condition", "ApproximateModel", "fit_approximate_model", "fit_dlt", "fit_affine",
            "fit_parallel_perspective", "intersect_scanner_rays", "intersect_pushbroom", "first_line_rays",
            "PairOrientation", "orient_pushbroom_pair"]
@@ -64,6 +67,19 @@ def _floats(value, name, *, ndim=None) -> np.ndarray:
         raise InputError(f"{name} must have {ndim} dimension(s), got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):
         raise InputError(f"{name} contains NaN or inf")
+    return arr
+
+
+def _numbers(value, name) -> np.ndarray:
+    """Numbers, NaN allowed (it marks missing values), inf not."""
+    if isinstance(value, (str, bytes)) or value is None:
+        raise InputError(f"{name} must be numbers, got {type(value).__name__}")
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be numbers") from None
+    if np.any(np.isinf(arr)):
+        raise InputError(f"{name} contains inf")
     return arr
 
 
@@ -384,10 +400,96 @@ class EOPolynomial:
         return e[:, :3], rotation_matrix(e[:, 3], e[:, 4], e[:, 5], order="wak")
 
 
+@dataclass(frozen=True, eq=False)
+class EOTable:
+    """Exterior orientation of a scanner tabulated line by line (GNSS/IMU, or the result of (8.15.2)).
+
+    Line i of the table is the EO at Δt = i·line_period (8.5.4); between lines every element —
+    the angles included — is interpolated linearly (as (8.15.2) interpolates between fixed
+    centres), and the rotation matrix is built from the interpolated angles. **Outside the table**
+    (Δt < 0 or Δt > (n_lines − 1)·line_period) the first or last segment is extrapolated
+    linearly (``extrapolate=True``, so that a Newton line search may step past the ends), or an
+    InputError is raised (``extrapolate=False``). :meth:`Pushbroom.project` with ``bracket=True``
+    never leaves the table: points no tabulated line sees get NaN.
+
+    Parameters
+    ----------
+    table : array_like (n_lines, 6)
+        (X_S, Y_S, Z_S, ω, α, κ) of every line (m, rad), n_lines ≥ 2.
+    line_period : float
+        Time between table lines (s).
+    order : {"wak", "kaw"}
+        Rotation sequence of the table's angles: A = A_ω A_α A_κ (1.3.2) or A_κ A_α A_ω (1.3.4).
+    extrapolate : bool
+        Extrapolate linearly outside the table (True) or raise InputError (False).
+
+    Raises
+    ------
+    InputError
+        Fewer than 2 lines, a table that is not (n, 6), NaN/inf, a non-positive period, an
+        unknown order.
+
+    References
+    ----------
+    Chibunichev (2022), §8.5, eq. (8.5.4); §8.15, eq. (8.15.2); §1.3, eqs. (1.3.2), (1.3.4).
+
+    Examples
+    --------
+    >>> eo = EOTable([[0, 0, 1000, 0, 0, 0], [10, 0, 1000, 0, 0, 0.02]], line_period=0.1)
+    >>> eo.elements([0.05, 0.2]).round(6).tolist()
+    [[5.0, 0.0, 1000.0, 0.0, 0.0, 0.01], [20.0, 0.0, 1000.0, 0.0, 0.0, 0.04]]
+    """
+
+    table: np.ndarray
+    line_period: float = 1.0
+    order: str = "wak"
+    extrapolate: bool = True
+
+    def __post_init__(self):
+        t = _floats(self.table, "EO table", ndim=2)
+        if t.shape[1] != 6:
+            raise InputError(f"the EO table must be (n_lines, 6) (X_S, Y_S, Z_S, ω, α, κ), got shape {t.shape}")
+        if len(t) < 2:
+            raise InputError(f"an EO table needs at least 2 lines to interpolate, got {len(t)}")
+        object.__setattr__(self, "table", t)
+        object.__setattr__(self, "line_period", _positive(self.line_period, "line_period"))
+        if self.order not in ("wak", "kaw"):
+            raise InputError(f"order must be 'wak' (1.3.2) or 'kaw' (1.3.4), got {self.order!r}")
+        if not isinstance(self.extrapolate, (bool, np.bool_)):
+            raise InputError(f"extrapolate must be True or False, got {self.extrapolate!r}")
+
+    def __repr__(self) -> str:
+        return (f"EOTable(<{self.n_lines} lines>, line_period={self.line_period!r}, order={self.order!r}, "
+                f"extrapolate={self.extrapolate!r})")
+
+    @property
+    def n_lines(self) -> int:
+        """Number of tabulated lines."""
+        return len(self.table)
+
+    def elements(self, dt) -> np.ndarray:
+        """The six elements at times Δt (linear between lines), shape (n, 6)."""
+        line = _floats(dt, "dt").ravel() / self.line_period
+        last = self.n_lines - 1
+        if not self.extrapolate and np.any((line < -1e-9) | (line > last + 1e-9)):
+            raise InputError(f"times outside the EO table (lines 0…{last}) and extrapolate=False")
+        i = np.clip(np.floor(line), 0, last - 1).astype(np.int64)
+        w = (line - i)[:, None]
+        return (1 - w) * self.table[i] + w * self.table[i + 1]
+
+    def at(self, dt):
+        """(S, A) at times Δt: centres (n, 3) and matrices A (n, 3, 3) in the table's ``order``."""
+        e = self.elements(dt)
+        return e[:, :3], rotation_matrix(e[:, 3], e[:, 4], e[:, 5], order=self.order)
+
+
 # --------------------------------------------------------------------------- the sensor
 @dataclass(frozen=True, eq=False)
 class Pushbroom:
-    """A pushbroom (linear-CCD, optionally staggered) scanner with time-polynomial EO, §8.2, §8.5.
+    """A pushbroom (linear-CCD, optionally staggered) scanner with EO in time, §8.2, §8.5, §8.15–8.16.
+
+    The EO is either polynomials in time (:class:`EOPolynomial`, (8.5.3)/(8.5.5)) or a per-line
+    table (:class:`EOTable`, GNSS/IMU or the result of (8.15.2)); the geometry is the same.
 
     Parameters
     ----------
@@ -399,21 +501,23 @@ class Pushbroom:
         Pixels per image line.
     line_period : float
         Time between lines (s); Δt = row·line_period (8.5.4).
-    eo : EOPolynomial
-        The exterior orientation (8.5.3)/(8.5.5).
+    eo : EOPolynomial or EOTable
+        The exterior orientation (8.5.3)/(8.5.5), or a table of line EO (its line i is row i only
+        when its ``line_period`` equals the sensor's).
     x0, y0 : float
         Principal point in the scanner frame (m).
     x_offsets : float or array_like (n_columns,)
         Along-track offset x_i of the CCD (one value) or of the matrix imaging each column
         (:func:`staggered_offsets`), (8.2.1).
     n_rows : int, optional
-        Number of lines (used as the start of the line search and for the image extent).
+        Number of lines (the start of the line search and the span of the bracketed search); with
+        an :class:`EOTable` whose line period is the sensor's, default and maximum: the table's lines.
 
     Raises
     ------
     InputError
-        Non-positive sizes, NaN/inf, an ``eo`` that is not an :class:`EOPolynomial`, offsets of the
-        wrong length.
+        Non-positive sizes, NaN/inf, an ``eo`` that is neither an :class:`EOPolynomial` nor an
+        :class:`EOTable`, offsets of the wrong length, more rows than a table has lines.
 
     References
     ----------
@@ -434,7 +538,7 @@ class Pushbroom:
     pixel_size: float
     n_columns: int
     line_period: float
-    eo: EOPolynomial
+    eo: EOPolynomial | EOTable
     x0: float = 0.0
     y0: float = 0.0
     x_offsets: float | np.ndarray = 0.0
@@ -450,8 +554,13 @@ class Pushbroom:
         if self.n_rows is not None:
             r = _positive(self.n_rows, "n_rows")
             object.__setattr__(self, "n_rows", int(r))
-        if not isinstance(self.eo, EOPolynomial):
-            raise InputError(f"eo must be an EOPolynomial, got {type(self.eo).__name__}")
+        if not isinstance(self.eo, (EOPolynomial, EOTable)):
+            raise InputError(f"eo must be an EOPolynomial or an EOTable, got {type(self.eo).__name__}")
+        if isinstance(self.eo, EOTable) and self.eo.line_period == self.line_period:
+            if self.n_rows is None:
+                object.__setattr__(self, "n_rows", self.eo.n_lines)
+            elif self.n_rows > self.eo.n_lines:
+                raise InputError(f"n_rows = {self.n_rows} but the EO table has {self.eo.n_lines} lines")
         for name in ("x0", "y0"):
             v = _floats(getattr(self, name), name)
             if v.ndim:
@@ -463,7 +572,7 @@ class Pushbroom:
         object.__setattr__(self, "x_offsets", off)
 
     # -- image geometry
-    def with_eo(self, eo: EOPolynomial) -> "Pushbroom":
+    def with_eo(self, eo) -> "Pushbroom":
         """The same sensor with another exterior orientation."""
         return Pushbroom(self.focal_length, self.pixel_size, self.n_columns, self.line_period, eo,
                          self.x0, self.y0, self.x_offsets, self.n_rows)
@@ -491,7 +600,7 @@ class Pushbroom:
         S, A = self.eo.at(rows * self.line_period)
         return S, np.einsum("nij,nj->ni", A, self.rays(cols))
 
-    def ground(self, rows, cols, Z):
+    def ground(self, rows, cols, Z, *, invalid: str = "raise"):
         """Image → ground on the height Z, (8.5.1)/(8.7.1).
 
         X = X_Si + (Z − Z_Si)X′/Z′, Y = Y_Si + (Z − Z_Si)Y′/Z′, (X′, Y′, Z′)ᵀ = A_i·r.
@@ -502,6 +611,9 @@ class Pushbroom:
             Image pixel coordinates (broadcast together with Z).
         Z : float or array_like
             Height of each point.
+        invalid : {"raise", "nan"}
+            ``"raise"``: errors below; ``"nan"`` (for DEM iterations such as §8.16's): NaN inputs
+            propagate and rays that do not reach the plane (parallel or behind) give NaN.
 
         Returns
         -------
@@ -511,7 +623,7 @@ class Pushbroom:
         Raises
         ------
         InputError
-            NaN/inf, shapes that do not broadcast.
+            NaN/inf (with ``invalid="raise"``), shapes that do not broadcast, an unknown ``invalid``.
         DegenerateGeometryError
             A ray parallel to the plane Z = const.
         PointBehindCameraError
@@ -528,6 +640,19 @@ class Pushbroom:
         >>> [round(float(v), 9) for v in cam.ground(0.0, 60.0, 0.0)]
         [0.0, 1.0]
         """
+        if invalid == "nan":
+            (rows, cols, Z), shape = _same(*(_numbers(v, n) for v, n in ((rows, "rows"), (cols, "cols"), (Z, "Z"))),
+                                           names=("rows", "cols", "Z"))
+            X, Y = np.full(rows.shape, np.nan), np.full(rows.shape, np.nan)
+            ok = np.isfinite(rows) & np.isfinite(cols)
+            S, R = self.object_rays(rows[ok], cols[ok])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                lam = (Z[ok] - S[:, 2]) / R[:, 2]
+            lam = np.where(lam > 0, lam, np.nan)           # behind, parallel or NaN height
+            X[ok], Y[ok] = S[:, 0] + lam * R[:, 0], S[:, 1] + lam * R[:, 1]
+            return X.reshape(shape), Y.reshape(shape)
+        if invalid != "raise":
+            raise InputError(f"invalid must be 'raise' or 'nan', got {invalid!r}")
         (rows, cols, Z), shape = _same(_floats(rows, "rows"), _floats(cols, "cols"), _floats(Z, "Z"),
                                        names=("rows", "cols", "Z"))
         S, R = self.object_rays(rows, cols)
@@ -545,7 +670,7 @@ class Pushbroom:
         v = np.einsum("nji,nj->ni", A, P - S)          # (X*, Y*, Z*) = Aᵀ(P − S), (8.5.2)
         return self.focal_length * v[:, 0] + (xi - self.x0) * v[:, 2], v
 
-    def project(self, X, Y, Z, rows0=None, tol: float = 1e-9, max_iter: int = 50):
+    def project(self, X, Y, Z, rows0=None, tol: float = 1e-9, max_iter: int = 50, *, bracket: bool = False):
         """Ground → image, (8.5.2): a Newton search for the line whose plane contains the point.
 
         For a point P the line (time) is the root of g(row) = f·X* + (x_i − x₀)·Z* with
@@ -555,6 +680,12 @@ class Pushbroom:
         matrix is kept; a point that falls in a gap between matrices (no consistent solution: the
         yaw moved it across the matrix boundary) gets NaN — it is not imaged. A point imaged twice
         (double coverage at a boundary) gets the solution of the matrix with the smaller offset.
+
+        With ``bracket=True`` the search stays within the image lines 0 … n_rows − 1: the root is
+        bracketed on a coarse scan of 17 lines and refined by Newton steps safeguarded by
+        bisection. Points that no line of the span sees, points behind the sensor and NaN inputs
+        then get NaN instead of an error (what orthorectification and voxel matching want; the
+        natural search for an :class:`EOTable`).
 
         Parameters
         ----------
@@ -566,17 +697,19 @@ class Pushbroom:
             Convergence of the line (rows).
         max_iter : int
             Newton steps allowed.
+        bracket : bool
+            Bracketed search within rows 0 … n_rows − 1, NaN for points not imaged (needs ``n_rows``).
 
         Returns
         -------
         rows, cols : ndarray
             Image pixel coordinates ((0, 0) = centre of the first pixel); NaN for points in a gap
-            of a staggered focal plane.
+            of a staggered focal plane (and, with ``bracket=True``, for points not imaged).
 
         Raises
         ------
         InputError
-            NaN/inf, shapes that do not broadcast.
+            NaN/inf (without ``bracket``), shapes that do not broadcast, ``bracket`` without ``n_rows``.
         ConvergenceError
             The line search did not converge.
         PointBehindCameraError
@@ -594,7 +727,12 @@ class Pushbroom:
         >>> [round(float(v[0]), 9) for v in cam.project(X, Y, 20.0)]
         [250.0, 700.0]
         """
-        (X, Y, Z), shape = _same(_floats(X, "X"), _floats(Y, "Y"), _floats(Z, "Z"), names=("X", "Y", "Z"))
+        if bracket:
+            if self.n_rows is None or self.n_rows < 2:
+                raise InputError("the bracketed line search needs n_rows ≥ 2 (the span of the image lines)")
+            (X, Y, Z), shape = _same(_numbers(X, "X"), _numbers(Y, "Y"), _numbers(Z, "Z"), names=("X", "Y", "Z"))
+        else:
+            (X, Y, Z), shape = _same(_floats(X, "X"), _floats(Y, "Y"), _floats(Z, "Z"), names=("X", "Y", "Z"))
         P = np.column_stack([X, Y, Z])
         if rows0 is None:
             start = 0.0 if self.n_rows is None else (self.n_rows - 1) / 2.0
@@ -605,12 +743,18 @@ class Pushbroom:
         todo = np.ones(len(P), bool)
         for offset in np.unique(self.x_offsets):        # staggered: try each matrix's offset
             xi = np.full(int(todo.sum()), float(offset))
-            r, v = self._newton_rows(P[todo], rows[todo], xi, tol, max_iter)
-            if np.any(v[:, 2] >= 0):
-                bad = np.flatnonzero(todo)[v[:, 2] >= 0]
-                raise PointBehindCameraError(f"points {bad[:10].tolist()} lie behind the sensor (Z* ≥ 0)", bad)
-            c = (self.y0 - self.focal_length * v[:, 1] / v[:, 2]) / self.pixel_size + (self.n_columns - 1) / 2.0
-            ok = (self.offset_of(c) == offset) if self.x_offsets.ndim else np.ones(len(c), bool)
+            if bracket:
+                r, v, seen = self._bracketed_rows(P[todo], xi, tol, max_iter)
+                seen &= v[:, 2] < 0                           # behind the sensor: not imaged
+            else:
+                r, v = self._newton_rows(P[todo], rows[todo], xi, tol, max_iter)
+                seen = np.ones(len(r), bool)
+                if np.any(v[:, 2] >= 0):
+                    bad = np.flatnonzero(todo)[v[:, 2] >= 0]
+                    raise PointBehindCameraError(f"points {bad[:10].tolist()} lie behind the sensor (Z* ≥ 0)", bad)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                c = (self.y0 - self.focal_length * v[:, 1] / v[:, 2]) / self.pixel_size + (self.n_columns - 1) / 2.0
+            ok = seen & ((self.offset_of(np.where(seen, c, 0.0)) == offset) if self.x_offsets.ndim else True)
             idx = np.flatnonzero(todo)[ok]
             out_rows[idx], out_cols[idx] = r[ok], c[ok]
             todo[idx] = False
@@ -637,6 +781,43 @@ class Pushbroom:
             return rows, self._along_track(P, rows, xi)[1]
         raise ConvergenceError(f"the line search did not converge in {max_iter} steps "
                                f"(largest last step {np.max(np.abs(step)):.3g} rows)")
+
+    def _bracketed_rows(self, P, xi, tol, max_iter):
+        """Root of g(row) within rows 0 … n_rows − 1: sign change on 17 coarse lines, then Newton
+        steps kept inside the bracket (bisection otherwise). Returns rows, (X*, Y*, Z*), found."""
+        last = self.n_rows - 1
+        samples = np.unique(np.linspace(0, last, min(self.n_rows, 17)).round())
+        with np.errstate(invalid="ignore"):
+            g = np.stack([self._along_track(P, np.full(len(P), s), xi)[0] for s in samples], axis=1)
+            change = (g[:, :-1] * g[:, 1:] <= 0) & np.isfinite(g[:, :-1]) & np.isfinite(g[:, 1:])
+        found = change.any(axis=1)
+        j = np.argmax(change, axis=1)
+        lo, hi = samples[j].astype(float), samples[j + 1].astype(float)
+        glo = g[np.arange(len(P)), j]
+        r = 0.5 * (lo + hi)
+        h = 1e-3
+        done = ~found
+        step = np.zeros(len(P))
+        for _ in range(max_iter):
+            gr = self._along_track(P, r, xi)[0]
+            same = np.sign(gr) == np.sign(glo)
+            lo, glo, hi = np.where(same, r, lo), np.where(same, gr, glo), np.where(same, hi, r)
+            rh = np.where(r + h <= last, r + h, r - h)        # forward difference, inside the span
+            with np.errstate(divide="ignore", invalid="ignore"):
+                newton = r - gr * (rh - r) / (self._along_track(P, rh, xi)[0] - gr)
+            inside = np.isfinite(newton) & (newton >= lo) & (newton <= hi)
+            new = np.where(inside, newton, 0.5 * (lo + hi))
+            step = np.where(found, new - r, 0.0)
+            r = np.where(found, new, r)
+            done = np.abs(step) < tol
+            if np.all(done):
+                break
+        if not np.all(np.abs(step) < 1e-6):
+            raise ConvergenceError(f"the bracketed line search did not converge in {max_iter} steps "
+                                   f"(largest last step {np.max(np.abs(step)):.3g} rows)")
+        with np.errstate(invalid="ignore"):
+            v = self._along_track(P, r, xi)[1]
+        return r, v, found
 
     def monoplot(self, rows, cols, dem: Callable, z_start=None, tol: float = 1e-4, max_iter: int = 50):
         """Ground coordinates of image points over a DEM: (8.7.1) iterated on Z as in §7.7.
@@ -758,6 +939,9 @@ def _line_model():
 def _resection_setup(sensor, rows, cols, XYZ, degree, fixed):
     if not isinstance(sensor, Pushbroom):
         raise InputError(f"sensor must be a Pushbroom, got {type(sensor).__name__}")
+    if not isinstance(sensor.eo, EOPolynomial):
+        raise InputError("the resection estimates the time-polynomial EO (8.5.3)/(8.5.5): give a sensor with an "
+                         f"EOPolynomial (e.g. fitted to the table) as the approximation, not an {type(sensor.eo).__name__}")
     if isinstance(degree, bool) or degree not in (1, 2):
         raise InputError(f"degree must be 1 (linear (8.5.3)) or 2 (quadratic (8.5.5)), got {degree!r}")
     XYZ = _points3(XYZ, "GCP object coordinates")

@@ -17,6 +17,9 @@ XG, YG = CAM.ground(ROWS, COLS, Z)
 XYZ = np.column_stack([XG, YG, Z])
 FLAT = np.column_stack([XG, YG, np.zeros(12)])
 R_UP = np.array([[0.0, 0.0, -1.0]])
+TABLE = EO.elements(np.arange(50) * 0.01)
+TAB = pb.EOTable(TABLE, 0.01)
+TCAM = pb.Pushbroom(0.1, 1e-5, 1001, 0.01, TAB)
 
 
 def _affine_model():
@@ -43,6 +46,23 @@ CASES = [
     Case(pb.EOPolynomial, ([0, 0, 0], [0] * 6), why="3 elements", raises=InputError),
     Case(pb.EOPolynomial, ([0] * 6, [NAN] * 6), why="NaN rates", raises=InputError),
     Case(pb.EOPolynomial.from_vector, (np.zeros(13),), why="13 parameters", raises=InputError),
+    Case(pb.EOTable, (TABLE[:1], 0.01), why="one line", raises=InputError, match="at least 2"),
+    Case(pb.EOTable, (TABLE[:, :5], 0.01), why="5 elements per line", raises=InputError),
+    Case(pb.EOTable, (TABLE[0], 0.01), why="1-D table", raises=InputError),
+    Case(pb.EOTable, (np.where(TABLE == 0, NAN, TABLE), 0.01), why="NaN in the table", raises=InputError),
+    Case(pb.EOTable, (TABLE, 0.0), why="zero line period", raises=InputError),
+    Case(pb.EOTable, (TABLE, 0.01, "xyz"), why="unknown rotation order", raises=InputError),
+    Case(pb.EOTable(TABLE, 0.01, extrapolate=False).elements, ([0.6],), why="time after the table",
+         raises=InputError, match="outside"),
+    Case(TAB.at, ([NAN],), why="NaN time", raises=InputError),
+    Case(pb.Pushbroom, (0.1, 1e-5, 100, 0.01, TAB), {"n_rows": 60}, why="more rows than table lines",
+         raises=InputError),
+    Case(TCAM.project, (1e5, 0.0, 0.0), {"bracket": True}, why="a point no line sees gives NaN", raises=None,
+         check=lambda rc: bool(np.isnan(rc[0]) and np.isnan(rc[1]))),
+    Case(CAM.project, (0.0, 0.0, 0.0), {"bracket": True, "max_iter": 1, "tol": 1e-30},
+         why="bracketed search without convergence", raises=ConvergenceError),
+    Case(pb.resect_pushbroom, (TCAM, ROWS[:8] / 10, COLS[:8], XYZ[:8]), why="a table cannot be resected",
+         raises=InputError, match="EOPolynomial"),
     Case(pb.Pushbroom, (0.1, 1e-5, 100.5, 0.01, EO), why="non-integer columns", raises=InputError),
     Case(pb.Pushbroom, (0.1, 1e-5, 100, 0.01, "eo"), why="eo not an EOPolynomial", raises=InputError),
     Case(pb.Pushbroom, (0.1, 1e-5, 100, 0.01, EO), {"x_offsets": np.zeros(7)}, why="offsets of the wrong length",

@@ -342,6 +342,7 @@ def test_tabulated_scanner_agrees_with_photolib_pushbroom():
     pb = pushbroom.Pushbroom(0.0625, 5e-5, 81, 0.02, eo, x_offsets=0.004, n_rows=100)
     table = eo.elements(np.arange(100) * 0.02)
     tab = georef.TabulatedLineScanner(table, 62.5, 0.05, 81, x_line=4.0)
+    assert isinstance(tab.sensor, pushbroom.Pushbroom) and isinstance(tab.sensor.eo, pushbroom.EOTable)
     rows, cols = RNG.uniform(0, 99, 20), RNG.uniform(0, 80, 20)
     X1, Y1 = pb.ground(rows, cols, 90.0)
     X2, Y2 = tab.ground(rows, cols, 90.0)

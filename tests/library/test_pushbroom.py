@@ -426,3 +426,98 @@ def test_project_does_not_converge_is_named():
     cam = resurs_like()
     with pytest.raises(ConvergenceError):
         cam.project(1000.0, 0.0, 0.0, max_iter=1, tol=1e-30)
+
+
+# ------------------------------------------------------------------------ tabulated EO (§8.15)
+def _table_sensor(n=400, offsets=0.0):
+    """A sensor whose EO table samples a quadratic EO polynomial (attitude in 'kaw' order)."""
+    poly = pb.EOPolynomial([0.0, 2.0, 1100.0, 0.01, -0.02, 0.03], [40.0, 1.0, 0.5, 1e-3, 2e-3, -1e-3],
+                           [0.5, -0.2, 0.1, 1e-4, -1e-4, 2e-4])
+    table = poly.elements(np.arange(n) * 0.02)
+    return pb.Pushbroom(0.0625, 5e-5, 81, 0.02, pb.EOTable(table, 0.02, order="kaw"), x_offsets=offsets)
+
+
+def test_eo_table_equals_a_linear_polynomial_inside_and_outside():
+    """Sampled from a linear EO, linear interpolation (and extrapolation by the end segments) is exact."""
+    poly = pb.EOPolynomial([1, 2, 3, 0.1, 0.2, 0.3], [1, -1, 2, 0.01, 0.02, 0.03])
+    tab = pb.EOTable(poly.elements(np.arange(5) * 0.5), 0.5)
+    dt = np.array([-0.7, 0.0, 0.3, 1.25, 2.0, 3.1])
+    np.testing.assert_allclose(tab.elements(dt), poly.elements(dt), rtol=1e-13, atol=1e-13)
+    S1, A1 = tab.at(dt)
+    S2, A2 = poly.at(dt)
+    np.testing.assert_allclose(S1, S2, atol=1e-12)
+    np.testing.assert_allclose(A1, A2, atol=1e-13)
+    assert tab.n_lines == 5
+    with pytest.raises(InputError, match="outside"):
+        pb.EOTable(tab.table, 0.5, extrapolate=False).elements([2.5])
+
+
+def test_eo_table_interpolates_each_element_between_lines():
+    table = np.array([[0, 0, 1000, 0.0, 0.1, 0.2], [10, 4, 1002, 0.02, 0.1, 0.0], [30, 4, 1000, 0.0, 0.0, 0.0]])
+    tab = pb.EOTable(table, 2.0, order="kaw")
+    e = tab.elements([1.0, 3.0])                       # half-way between lines 0–1 and 1–2
+    np.testing.assert_allclose(e, [(table[0] + table[1]) / 2, (table[1] + table[2]) / 2])
+    _, A = tab.at([1.0])
+    np.testing.assert_allclose(A[0], rotation_matrix(0.01, 0.1, 0.1, order="kaw"), atol=1e-15)
+
+
+def test_table_sensor_project_agrees_with_an_independent_root_search():
+    """brentq on the along-track coordinate x* of the interpolated table; then the column (8.5.2)."""
+    cam = _table_sensor()
+    assert cam.n_rows == 400
+    P = np.array([150.0, 14.0, 95.0])
+
+    def along(row):
+        S, A = cam.eo.at([row * 0.02])
+        return (A[0].T @ (P - S[0]))[0]
+    row = brentq(along, 0, 399, xtol=1e-13)
+    S, A = cam.eo.at([row * 0.02])
+    v = A[0].T @ (P - S[0])
+    col = (-cam.focal_length * v[1] / v[2]) / cam.pixel_size + (cam.n_columns - 1) / 2
+    for bracket in (False, True):
+        r2, c2 = cam.project(*P, bracket=bracket)
+        assert abs(float(r2) - row) < 1e-8 and abs(float(c2) - col) < 1e-8
+
+
+@pytest.mark.parametrize("offsets", [0.0, "staggered"])
+def test_table_sensor_round_trip_and_bracketed_nan(offsets):
+    if offsets == "staggered":
+        offsets = pb.staggered_offsets([27, 27, 27], [0.002, -0.002, 0.002])
+    cam = _table_sensor(offsets=offsets)
+    rng = np.random.default_rng(5)
+    rows, cols, Z = rng.uniform(0, 399, 300), rng.uniform(0, 80, 300), rng.uniform(50, 150, 300)
+    X, Y = cam.ground(rows, cols, Z)
+    r1, c1 = cam.project(X, Y, Z)
+    r2, c2 = cam.project(X, Y, Z, bracket=True)
+    same = np.abs(r2 - rows) < 1e-6                   # staggered: boundary points may be imaged twice
+    assert same.mean() > 0.95
+    np.testing.assert_allclose(np.c_[r2, c2][same], np.c_[rows, cols][same], atol=1e-7)
+    ok = np.isfinite(r1) & (r1 >= 0) & (r1 <= 399)   # the plain search may answer past the table's end
+    assert ok.mean() > 0.95
+    np.testing.assert_allclose(np.c_[r1, c1][ok], np.c_[r2, c2][ok], atol=1e-7)
+    # beyond the last line, behind the sensor, NaN heights: NaN, not an error (and not a guess)
+    S_end = cam.eo.at([399 * 0.02])[0][0]
+    rr, cc = cam.project([S_end[0] + 500.0, 100.0, 100.0], [S_end[1], 10.0, 10.0], [100.0, 5000.0, np.nan],
+                         bracket=True)
+    assert np.isnan(rr).all() and np.isnan(cc).all()
+
+
+def test_ground_nan_mode_and_bracket_needs_rows():
+    cam = _table_sensor()
+    X, Y = cam.ground([10.0, 10.0, np.nan], [40.0, 40.0, 40.0], [100.0, 5000.0, 100.0], invalid="nan")
+    X0, Y0 = cam.ground(10.0, 40.0, 100.0)
+    assert X[0] == X0 and Y[0] == Y0 and np.isnan(X[1:]).all() and np.isnan(Y[1:]).all()
+    with pytest.raises(InputError, match="invalid"):
+        cam.ground(10.0, 40.0, 100.0, invalid="ignore")
+    poly = resurs_like(n_rows=None)
+    with pytest.raises(InputError, match="n_rows"):
+        poly.project(0.0, 0.0, 0.0, bracket=True)
+
+
+def test_resection_refuses_a_table():
+    cam = _table_sensor()
+    rng = np.random.default_rng(2)
+    rows, cols = rng.uniform(0, 399, 10), rng.uniform(0, 80, 10)
+    X, Y = cam.ground(rows, cols, 100.0)
+    with pytest.raises(InputError, match="EOPolynomial"):
+        pb.resect_pushbroom(cam, rows, cols, np.column_stack([X, Y, np.full(10, 100.0)]))

@@ -78,6 +78,23 @@ def test_fit_from_a_pushbroom_reproduces_it_at_random_heights(sensor, five_plane
     assert np.max(np.hypot(lon - X, lat - Y)) < 1e-5      # metres (GSD 1 m)
 
 
+def test_fit_from_the_library_pushbroom_reproduces_its_projection():
+    """photolib.pushbroom.Pushbroom (EO quadratic in time, Newton line search (8.5.2)) → RPC → the
+    same image positions at random heights between the planes."""
+    from photolib.pushbroom import EOPolynomial, Pushbroom as LibraryPushbroom
+
+    eo = EOPolynomial([0.0, 0.0, 475e3, 0.08, 0.03, 0.02], [7000.0, 30.0, -5.0, 2e-5, -1e-5, 3e-5],
+                      [0.0, 0.0, 0.0, 1e-7, 0.0, 0.0])
+    sensor = LibraryPushbroom(3.8, 8e-6, 4000, 1 / 7000, eo, n_rows=3000)
+    fit = fit_rpc(sensor.ground, (3000, 4000), (0.0, 1000.0), levels=5, step=200)
+    r, c, h = random_points(300, 11, shape=(3000, 4000))
+    X, Y = sensor.ground(r, c, h)
+    rows, cols = sensor.project(X, Y, h)                   # the rigorous inverse, not the fit
+    np.testing.assert_allclose(rows, r, atol=1e-6)
+    pr, pc = project(fit.rpc, X, Y, h)
+    assert np.max(np.hypot(pr - rows, pc - cols)) < 1e-6
+
+
 def test_normalisation_spans_minus_one_to_one(sensor, five_planes):
     r, c, lon, lat, h = rpc_grid(sensor.ground, SHAPE, np.linspace(0, 1000, 5), step=200)
     rpc = five_planes.rpc
