@@ -16,7 +16,8 @@
   of the book's 5 bare points, whose solution needs a degree-6 polynomial), each consensus set
   refitted by least squares: :func:`fit_line`, :func:`fit_plane` (orthogonal regression, closed
   form), :func:`fit_sphere`, :func:`fit_cylinder` (geometric distances by Gauss–Newton through
-  :func:`photolib.lsq.gauss_newton`). :func:`detect_shapes` extracts several shapes in turn.
+  :func:`photolib.lsq.gauss_newton`, the Jacobians from the sympy models of
+  :mod:`photolib.derivations.shapes`). :func:`detect_shapes` extracts several shapes in turn.
 * :func:`estimate_normals`, :func:`region_growing` — normals and curvature by local PCA of the k
   nearest neighbours (``scipy.spatial.cKDTree``); regions grown from the flattest seeds, a
   neighbour joining when its normal is within an angle of the region's least-squares plane and its
@@ -461,7 +462,8 @@ def fit_sphere(points) -> Sphere:
     """Sphere by least squares: algebraic start, then geometric distances by Gauss–Newton.
 
     Four points give the sphere through them; more are adjusted with the residuals
-    v_i = |X_i − C| − R through :func:`photolib.lsq.gauss_newton`.
+    v_i = |X_i − C| − R through :func:`photolib.lsq.gauss_newton`, the derivatives from the sympy
+    model :func:`photolib.derivations.shapes.sphere_distance_model`.
 
     Parameters
     ----------
@@ -510,12 +512,16 @@ def fit_sphere(points) -> Sphere:
         raise DegenerateGeometryError("the algebraic sphere has no real radius")
     x0 = np.r_[centre, math.sqrt(r2)]
     if len(P) > 4:
+        from .derivations.shapes import sphere_distance_model
+        residual_fn, jacobian_fn = sphere_distance_model().compile()
+        data = tuple(Qs.T)
+
         def lin(x):
-            w = Qs - x[:3]
-            rho = np.linalg.norm(w, axis=1)
-            if np.any(rho == 0):
+            args = (*x, *data)
+            v = residual_fn(*args)[0]
+            if np.any(v + x[3] == 0):                      # ρ = 0: the derivatives are undefined
                 raise DegenerateGeometryError("a point lies at the sphere's centre")
-            return np.column_stack([-w / rho[:, None], -np.ones(len(w))]), rho - x[3]
+            return jacobian_fn(*args).T, v
         x0 = _gauss_newton(lin, x0, "sphere").x
     return Sphere(c0 + x0[:3] * scale, float(abs(x0[3]) * scale))
 
@@ -569,8 +575,9 @@ def fit_cylinder(points, normals=None) -> Cylinder:
     Start: the axis is the direction least represented in the normals (smallest eigenvector of
     Σ n nᵀ), the circle an algebraic fit in the plane across the axis. Then the residuals
     v_i = |(X_i − C) × a| − R are adjusted through :func:`photolib.lsq.gauss_newton` with the
-    five unknowns (two tilts of the axis, two shifts of the axis point across it, R). With two
-    points the normals are required and the minimal solution is returned.
+    five unknowns (two tilts of the axis, two shifts of the axis point across it, R), the
+    derivatives from the sympy model :func:`photolib.derivations.shapes.cylinder_distance_model`.
+    With two points the normals are required and the minimal solution is returned.
 
     Parameters
     ----------
@@ -637,21 +644,16 @@ def fit_cylinder(points, normals=None) -> Cylinder:
         m = a0 + x[0] * u + x[1] * v
         return m, c0 + x[2] * u + x[3] * v
 
+    from .derivations.shapes import cylinder_distance_model
+    residual_fn, jacobian_fn = cylinder_distance_model().compile()
+    data = (*Q.T, *a0, *u, *v, *c0)
+
     def lin(x):
-        m, c = unpack(x)
-        mn = np.linalg.norm(m)
-        a = m / mn
-        w_ = Q - c
-        wa = w_ @ a
-        perp = w_ - wa[:, None] * a
-        rho = np.linalg.norm(perp, axis=1)
-        if np.any(rho == 0):
+        args = (*x, *data)
+        res = residual_fn(*args)[0]
+        if np.any(res + x[4] == 0):                        # ρ = 0: the derivatives are undefined
             raise DegenerateGeometryError("a point lies on the cylinder's axis")
-        da_ds = (u - (a @ u) * a) / mn
-        da_dt = (v - (a @ v) * a) / mn
-        B = np.column_stack([-wa * (w_ @ da_ds) / rho, -wa * (w_ @ da_dt) / rho,
-                             -(perp @ u) / rho, -(perp @ v) / rho, -np.ones(len(Q))])
-        return B, rho - x[4]
+        return jacobian_fn(*args).T, res
 
     try:
         x = _gauss_newton(lin, np.array([0, 0, 0, 0, r0]), "cylinder").x

@@ -32,6 +32,13 @@ Modules, by topic:
 * :mod:`~photolib.derivations.radar` — radar positioning, stereo and InSAR, §8.9–§8.13.
 * :mod:`~photolib.derivations.georef` — direct georeferencing and scanner triangulation,
   §8.14–§8.15.
+* :mod:`~photolib.derivations.shapes` — point-to-sphere and point-to-cylinder distances,
+  Chapter 9, §9.11.
+* :mod:`~photolib.derivations.lidar` — laser scanning: the laser-line scanner, mobile mapping,
+  Chapter 9, §9.1–§9.10.
+* :mod:`~photolib.derivations.registration` — the rigid transform without scale (9.5.1).
+* :mod:`~photolib.derivations.terrestrial` — condition equations, polar collinearity and the
+  normal case of terrestrial pairs, Chapter 11, §11.6–§11.8.
 
 Every public name of these modules is available here: ``from photolib import derivations;
 derivations.collinearity_model("kaw")``.
@@ -43,8 +50,9 @@ Examples
 (2, 6)
 """
 
-from . import (bundle, collinearity, coplanarity, distortion, georef, gnss, intersection, matching, model,
-               orthophoto, projective, quaternion, radar, rotation, scanner, similarity, symbols)
+from . import (bundle, collinearity, coplanarity, distortion, georef, gnss, intersection, lidar, matching,
+               model, orthophoto, projective, quaternion, radar, registration, rotation, scanner, shapes,
+               similarity, symbols, terrestrial)
 from .bundle import *  # noqa: F401,F403
 from .collinearity import *  # noqa: F401,F403
 from .coplanarity import *  # noqa: F401,F403
@@ -53,18 +61,23 @@ from .distortion import *  # noqa: F401,F403
 from .georef import *  # noqa: F401,F403
 from .gnss import *  # noqa: F401,F403
 from .intersection import *  # noqa: F401,F403
+from .lidar import *  # noqa: F401,F403
 from .matching import *  # noqa: F401,F403
 from .model import *  # noqa: F401,F403
 from .orthophoto import *  # noqa: F401,F403
 from .projective import *  # noqa: F401,F403
 from .quaternion import *  # noqa: F401,F403
 from .radar import *  # noqa: F401,F403
+from .registration import *  # noqa: F401,F403
 from .rotation import *  # noqa: F401,F403
 from .scanner import *  # noqa: F401,F403
+from .shapes import *  # noqa: F401,F403
 from .similarity import *  # noqa: F401,F403
 from .symbols import *  # noqa: F401,F403
+from .terrestrial import *  # noqa: F401,F403
 
 __all__ = [name for module in (symbols, model, rotation, quaternion, distortion, collinearity, intersection,
                                coplanarity, similarity, bundle, projective, gnss, matching, orthophoto,
-                               scanner, radar, georef)
+                               scanner, radar, georef, shapes, lidar, registration,
+                               terrestrial)
            for name in module.__all__]

@@ -7,6 +7,7 @@ import pytest
 
 from catalogue import INF, NAN, Case, check_case
 from photolib import segmentation as sg
+from photolib.derivations import shapes as dsh
 from photolib.errors import ConvergenceError, DegenerateGeometryError, InputError
 
 SQ = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [0.5, 0.5, 0]], float)
@@ -94,6 +95,11 @@ CASES = [
     Case(sg.detect_shapes, (NANPTS, "line", 0.1, 2), raises=InputError, why="NaN"),
     Case(sg.detect_shapes, (LINE, "plane", 0.1, 3), raises=None, why="collinear cloud: no plane, an empty list",
          check=lambda r: r == []),
+    # the sympy models (photolib.derivations.shapes): no input that could be bad
+    Case(dsh.sphere_distance_model, (), raises=None, why="no input",
+         check=lambda m: len(m.parameters) == 4 and len(m.residuals) == 1),
+    Case(dsh.cylinder_distance_model, (), raises=None, why="no input",
+         check=lambda m: len(m.parameters) == 5 and len(m.data) == 15),
     # Hough
     Case(sg.hough_planes, (GRID,), {"angle_step": 0.0}, raises=InputError, why="zero angle step"),
     Case(sg.hough_planes, (GRID,), {"angle_step": 2.0}, raises=InputError, why="angle step too large"),

@@ -118,6 +118,47 @@ def test_minimal_cylinder_from_two_points_with_normals():
     np.testing.assert_allclose(sg.distances(c, P), 0, atol=1e-9)
 
 
+
+# --- the sympy models behind fit_sphere / fit_cylinder (photolib.derivations.shapes) ------------
+def _central_differences(fn, x, data, h=1e-6):
+    cols = []
+    for j in range(len(x)):
+        e = np.zeros(len(x))
+        e[j] = h
+        cols.append((fn(*(x + e), *data)[0] - fn(*(x - e), *data)[0]) / (2 * h))
+    return np.column_stack(cols)
+
+
+def test_sphere_distance_jacobian_equals_finite_differences():
+    from photolib.derivations import sphere_distance_model
+    res, jac = sphere_distance_model().compile()
+    rng = np.random.default_rng(11)
+    P = rng.normal(0, 2.0, (20, 3))
+    x = np.array([0.3, -0.2, 0.1, 1.7])
+    data = tuple(P.T)
+    np.testing.assert_allclose(res(*x, *data)[0], np.linalg.norm(P - x[:3], axis=1) - x[3], rtol=0, atol=1e-14)
+    np.testing.assert_allclose(jac(*x, *data).T, _central_differences(res, x, data), rtol=0, atol=1e-8)
+
+
+def test_cylinder_distance_jacobian_equals_finite_differences():
+    from photolib.derivations import cylinder_distance_model
+    res, jac = cylinder_distance_model().compile()
+    rng = np.random.default_rng(12)
+    a0 = _unit([0.2, -0.4, 1.0])
+    u = _unit(np.cross(a0, [1.0, 0, 0]))
+    v = np.cross(a0, u)
+    c0 = np.array([0.5, -1.0, 0.3])
+    P = rng.normal(0, 2.0, (25, 3))
+    data = (*P.T, *a0, *u, *v, *c0)
+    for x in (np.array([0.0, 0.0, 0.0, 0.0, 1.0]), np.array([0.15, -0.1, 0.3, -0.2, 0.9])):
+        # the residual is the orthogonal distance of (X − c) × a, written independently
+        a = _unit(a0 + x[0] * u + x[1] * v)
+        c = c0 + x[2] * u + x[3] * v
+        np.testing.assert_allclose(res(*x, *data)[0], np.linalg.norm(np.cross(P - c, a), axis=1) - x[4],
+                                   rtol=0, atol=1e-13)
+        np.testing.assert_allclose(jac(*x, *data).T, _central_differences(res, x, data), rtol=0, atol=1e-8)
+
+
 # --- RANSAC with noise and outliers -------------------------------------------------------------
 @pytest.mark.parametrize("shape", ["line", "plane", "sphere", "cylinder"])
 def test_ransac_shapes_recall_precision_and_parameters(shape):
