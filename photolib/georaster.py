@@ -37,7 +37,7 @@ from typing import Callable
 import numpy as np
 
 from .errors import InputError, PhotolibError
-from .rectify import RESAMPLING_METHODS, RasterGrid, dem_height, orthorectify
+from .rectify import RESAMPLING_METHODS, RasterGrid, dem_height, mosaic_grid, orthorectify
 
 __all__ = ["GeoDependencyError", "write_geotiff", "read_geotiff", "read_dem", "transform_points",
            "grid_centres_in", "GeoidModel", "read_geoid", "dem_on_grid", "rpc_projector",
@@ -1410,20 +1410,8 @@ def mosaic_tiled(orthos, grids, cutline, *, tile: int = 512, fill_gaps: bool = T
             raise InputError(f"orthos[{i}] has shape {tuple(shape[:2])}, its grid {g.shape}")
     all_grids = [s[3] for s in sources]
     # the mosaic grid of rectify.mosaic (which checks the cutlines in each tile); one lattice
-    dx, dy = all_grids[0].dx, all_grids[0].dy
-    for k, g in enumerate(all_grids[1:], 1):
-        if not (math.isclose(g.dx, dx, rel_tol=1e-9) and math.isclose(g.dy, dy, rel_tol=1e-9)):
-            raise InputError(f"grids[{k}] has pixel size {g.pixel_size}, grids[0] {all_grids[0].pixel_size}: "
-                             "a mosaic needs one ground resolution")
-        for shift, step in ((g.x0 - all_grids[0].x0, dx), (all_grids[0].y0 - g.y0, dy)):
-            if abs(shift / step - round(shift / step)) > 1e-6:
-                raise InputError(f"grids[{k}]'s origin is not on the pixel lattice of grids[0] "
-                                 "(origins must be multiples of the pixel size, §7.7)")
-    x0 = min(g.x0 for g in all_grids)
-    y0 = max(g.y0 for g in all_grids)
-    x1 = max(g.extent[2] for g in all_grids)
-    y1 = min(g.extent[1] for g in all_grids)
-    out_grid = RasterGrid(x0, y0, (dx, dy), (int(round((y0 - y1) / dy)), int(round((x1 - x0) / dx))))
+    out_grid = mosaic_grid(all_grids)
+    dx, dy = out_grid.dx, out_grid.dy
     rows_total, cols_total = out_grid.shape
     blocks = []
     for r in range(0, rows_total, tile):

@@ -35,7 +35,7 @@ import numpy as np
 from .errors import InputError
 
 __all__ = ["RasterGrid", "RESAMPLING_METHODS", "resample", "rectify_forward", "dem_height",
-           "frame_projector", "orthorectify", "rectify_homography", "rectify_to_horizontal",
+           "frame_projector", "orthorectify", "mosaic_grid", "rectify_homography", "rectify_to_horizontal",
            "ortho_pixel_size", "ELLIPSOIDS", "geodetic_to_geocentric", "geocentric_to_geodetic",
            "topocentric_matrix", "geocentric_to_topocentric", "topocentric_to_geocentric",
            "map_tolerance", "admissible_height", "relief_displacement", "MonoplotResult", "monoplot",
@@ -1529,6 +1529,53 @@ def cutline_boundary(grid: RasterGrid, cutline) -> np.ndarray:
     return np.clip(col, -1, grid.shape[1] - 1)
 
 
+
+def mosaic_grid(grids) -> RasterGrid:
+    """The grid of a mosaic of orthophotos on one pixel lattice (§7.7).
+
+    Parameters
+    ----------
+    grids : sequence of RasterGrid
+        The orthophotos' grids: one pixel size, origins on multiples of it.
+
+    Returns
+    -------
+    RasterGrid
+        Origin X₀M = min X₀ᵢ, Y₀M = max Y₀ᵢ, covering every orthophoto.
+
+    Raises
+    ------
+    InputError
+        Not grids, different pixel sizes, an origin off the lattice of the first grid.
+
+    References
+    ----------
+    Chibunichev (2022), §7.7 (mosaic origin X₀M = min(X₀₁, X₀₂), Y₀M = max(Y₀₁, Y₀₂)).
+
+    Examples
+    --------
+    >>> from photolib.rectify import RasterGrid, mosaic_grid
+    >>> mosaic_grid([RasterGrid(0.0, 10.0, 1.0, (5, 5)), RasterGrid(3.0, 12.0, 1.0, (5, 5))])
+    RasterGrid(x0=0.0, y0=12.0, pixel_size=(1.0, 1.0), shape=(7, 8))
+    """
+    grids = list(grids) if isinstance(grids, (list, tuple)) else [grids]
+    if not grids or not all(isinstance(g, RasterGrid) for g in grids):
+        raise InputError("grids must be a non-empty sequence of RasterGrid")
+    dx, dy = grids[0].dx, grids[0].dy
+    for k, grid in enumerate(grids[1:], 1):
+        if not (math.isclose(grid.dx, dx, rel_tol=1e-9) and math.isclose(grid.dy, dy, rel_tol=1e-9)):
+            raise InputError(f"grids[{k}] has pixel size {grid.pixel_size}, grids[0] {grids[0].pixel_size}: "
+                             "a mosaic needs one ground resolution")
+        for shift, step in ((grid.x0 - grids[0].x0, dx), (grids[0].y0 - grid.y0, dy)):
+            if abs(shift / step - round(shift / step)) > 1e-6:
+                raise InputError(f"grids[{k}]'s origin is not on the pixel lattice of grids[0] "
+                                 "(origins must be multiples of the pixel size, §7.7)")
+    x0 = min(g.x0 for g in grids)
+    y0 = max(g.y0 for g in grids)
+    x1 = max(g.extent[2] for g in grids)
+    y1 = min(g.extent[1] for g in grids)
+    return RasterGrid(x0, y0, (dx, dy), (int(round((y0 - y1) / dy)), int(round((x1 - x0) / dx))))
+
 def mosaic(orthos, grids, cutline, *, fill_gaps: bool = True, return_source: bool = False):
     """A digital photo mosaic of orthophotos joined along cutlines by the row rule of §7.7.
 
@@ -1601,26 +1648,15 @@ def mosaic(orthos, grids, cutline, *, fill_gaps: bool = True, return_source: boo
         arrays.append(array)
     if len({a.shape[2:] for a in arrays}) != 1:
         raise InputError("the orthophotos have different numbers of bands")
-    dx, dy = grids[0].dx, grids[0].dy
-    for k, grid in enumerate(grids[1:], 1):
-        if not (math.isclose(grid.dx, dx, rel_tol=1e-9) and math.isclose(grid.dy, dy, rel_tol=1e-9)):
-            raise InputError(f"grids[{k}] has pixel size {grid.pixel_size}, grids[0] {grids[0].pixel_size}: "
-                             "a mosaic needs one ground resolution")
-        for shift, step in ((grid.x0 - grids[0].x0, dx), (grids[0].y0 - grid.y0, dy)):
-            if abs(shift / step - round(shift / step)) > 1e-6:
-                raise InputError(f"grids[{k}]'s origin is not on the pixel lattice of grids[0] "
-                                 "(origins must be multiples of the pixel size, §7.7)")
+    out_grid = mosaic_grid(grids)
+    dx, dy = out_grid.dx, out_grid.dy
     if n == 2 and np.ndim(cutline) == 2:
         cutlines = [cutline]
     else:
         cutlines = list(cutline) if isinstance(cutline, (list, tuple)) else [cutline]
         if len(cutlines) != n - 1:
             raise InputError(f"{n} orthophotos need {n - 1} cutlines, got {len(cutlines)}")
-    x0 = min(g.x0 for g in grids)
-    y0 = max(g.y0 for g in grids)
-    x1 = max(g.extent[2] for g in grids)
-    y1 = min(g.extent[1] for g in grids)
-    out_grid = RasterGrid(x0, y0, (dx, dy), (int(round((y0 - y1) / dy)), int(round((x1 - x0) / dx))))
+    x0, y0 = out_grid.x0, out_grid.y0
     rows, cols = out_grid.shape
     bands = arrays[0].shape[2:]
     stack = np.full((n, rows, cols) + bands, np.nan)
