@@ -46,7 +46,8 @@ from .rotation import check_order
 __all__ = ["PointKind", "TIE", "CONTROL", "CHECK", "ORIENTATION", "Observations", "Block", "StripLayout",
            "strip_layout", "terrain_height", "footprint_visibility", "aerial_block", "footprint_block",
            "rig_block", "rolling_shutter_block", "corridor_strip", "StereoPair", "stereo_pair",
-           "TerrainScene", "terrain_scene", "Rendering", "render_image", "pixel_to_image", "image_to_pixel"]
+           "TerrainScene", "terrain_scene", "Rendering", "render_image", "pixel_to_image", "image_to_pixel",
+           "MicroFrameCamera", "microframe_camera"]
 
 
 class PointKind(IntEnum):
@@ -2088,3 +2089,151 @@ def render_image(scene: TerrainScene, interior, exterior, shape, *, pixel_size: 
     if noise > 0:
         value = value + np.random.default_rng(seed).normal(0.0, noise, value.shape)
     return Rendering(value.astype(float), depth, XYZ, hit, interior, exterior, d)
+
+
+@dataclass(frozen=True)
+class MicroFrameCamera:
+    """A frame camera whose focal plane is tiled by several matrices (micro-frames), §8.18.
+
+    Attributes
+    ----------
+    interior : InteriorOrientation
+        The camera (f, mm).
+    exterior : ExteriorOrientation
+        Its exterior orientation.
+    pixel_size : float
+        Δ, mm.
+    frame_shape : (int, int)
+        Rows and columns of the conventional frame that holds all matrices.
+    matrix_shape : (int, int)
+        Rows and columns of one matrix.
+    offsets : tuple of (int, int)
+        (row, column) of each matrix's first pixel in the conventional frame.
+
+    References
+    ----------
+    Chibunichev (2022), §8.18, Figs. 8.40–8.42 (micro-frames combined into one image).
+
+    Examples
+    --------
+    >>> cam = microframe_camera()
+    >>> len(cam.offsets), cam.matrix_shape
+    (6, (985, 1920))
+    """
+
+    interior: InteriorOrientation
+    exterior: object
+    pixel_size: float
+    frame_shape: tuple
+    matrix_shape: tuple
+    offsets: tuple
+
+    def ground_of(self, index: int):
+        """The sensor of matrix ``index`` as ``(rows, cols, heights) -> (X, Y)`` (matrix pixels).
+
+        Parameters
+        ----------
+        index : int
+            The matrix, 0 … len(offsets) − 1.
+
+        Returns
+        -------
+        callable
+            Image → ground at given heights, through :func:`photolib.single_image.image_to_ground`.
+
+        Raises
+        ------
+        InputError
+            An index out of range.
+
+        References
+        ----------
+        Chibunichev (2022), §8.18.
+
+        Examples
+        --------
+        >>> X, Y = microframe_camera().ground_of(0)(492.0, 959.5, 0.0)
+        >>> bool(abs(X) < 1e4 and abs(Y) < 1e4)
+        True
+        """
+        from .single_image import image_to_ground
+
+        if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < len(self.offsets):
+            raise InputError(f"index must be a matrix number 0…{len(self.offsets) - 1}, got {index!r}")
+        r0, c0 = self.offsets[index]
+
+        def ground_of(rows, cols, heights):
+            shape = np.shape(rows)
+            xy = np.stack(pixel_to_image(np.ravel(cols) + c0, np.ravel(rows) + r0, self.frame_shape,
+                                         self.pixel_size), -1)
+            XYZ = image_to_ground(xy, np.ravel(np.broadcast_to(heights, shape)), self.exterior, self.interior)
+            return XYZ[:, 0].reshape(shape), XYZ[:, 1].reshape(shape)
+        return ground_of
+
+    def project(self, XYZ) -> np.ndarray:
+        """Rows and columns of object points in the conventional frame (collinearity), (n, 2).
+
+        Parameters
+        ----------
+        XYZ : (n, 3) array
+            Object points.
+
+        Returns
+        -------
+        ndarray
+            (n, 2): row, column.
+
+        Raises
+        ------
+        InputError
+            Bad shapes or NaN (from :func:`photolib.single_image.project`).
+
+        References
+        ----------
+        Chibunichev (2022), §8.18; §1.4 (collinearity).
+
+        Examples
+        --------
+        >>> cam = microframe_camera()
+        >>> X, Y = cam.ground_of(0)(10.0, 20.0, 100.0)
+        >>> cam.project([[float(X), float(Y), 100.0]]).round(6).tolist()
+        [[10.0, 20.0]]
+        """
+        from .single_image import project
+
+        col_row = image_to_pixel(project(XYZ, self.exterior, self.interior), self.frame_shape, self.pixel_size)
+        return col_row[:, ::-1]
+
+
+def microframe_camera() -> MicroFrameCamera:
+    """A synthetic Kanopus-V-like micro-frame camera (parameters NOT from the book), §8.18.
+
+    f = 1797.5 mm, 7.4 µm pixels, 510 km above flat ground (≈ 2.1 m GSD), six 985 × 1920 matrices in
+    two staggered rows 1500 px apart along track with 100 px overlap across track; a slightly tilted
+    exterior orientation (ω, α, κ = 0.004, −0.003, 0.02 rad, order ω–α–κ).
+
+    Returns
+    -------
+    MicroFrameCamera
+
+    Raises
+    ------
+    InputError
+        Never (no input).
+
+    References
+    ----------
+    Chibunichev (2022), §8.18; the Kanopus-V figures (f, matrix size, GSD, orbit) follow the
+    ISPRS Archives XXXIX-B4 (2012) description, not the book.
+
+    Examples
+    --------
+    >>> microframe_camera().frame_shape
+    (2485, 11020)
+    """
+    from .camera import ExteriorOrientation
+
+    return MicroFrameCamera(InteriorOrientation(f=1797.5),
+                            ExteriorOrientation(0.0, 0.0, 510e3, 0.004, -0.003, 0.02, order="wak"),
+                            0.0074, (2485, 11020), (985, 1920),
+                            ((0, 0), (0, 3640), (0, 7280), (1500, 1820), (1500, 5460), (1500, 9100)))

@@ -323,32 +323,10 @@ def table_8_2_trend(inputs: dict) -> dict:
 
 
 # --------------------------------------------------------------------------- §8.18
-KANOPUS_MATRIX = (985, 1920)
-KANOPUS_OFFSETS = ((0, 0), (0, 3640), (0, 7280), (1500, 1820), (1500, 5460), (1500, 9100))
-KANOPUS_FRAME = (2485, 11020)
-
-
-def kanopus_focal_plane():
-    """Synthetic Kanopus-V-like camera (NOT from the book): f = 1797.5 mm, 7.4 µm pixels, H = 510 km
-    (2.1 m GSD), six 985 × 1920 matrices in two staggered rows (1500 px apart along track,
-    100 px across-track overlap). Returns ``(io, eo, pixel_mm, ground_of(i))``."""
-    from ..camera import ExteriorOrientation, InteriorOrientation
-    from ..single_image import image_to_ground
-    from ..synthetic import pixel_to_image
-    io = InteriorOrientation(f=1797.5)
-    eo = ExteriorOrientation(0.0, 0.0, 510e3, 0.004, -0.003, 0.02, order="wak")
-    pixel = 0.0074
-
-    def micro(i):
-        r0, c0 = KANOPUS_OFFSETS[i]
-
-        def ground_of(rows, cols, heights):
-            shape = np.shape(rows)
-            xy = np.stack(pixel_to_image(np.ravel(cols) + c0, np.ravel(rows) + r0, KANOPUS_FRAME, pixel), -1)
-            XYZ = image_to_ground(xy, np.ravel(np.broadcast_to(heights, shape)), eo, io)
-            return XYZ[:, 0].reshape(shape), XYZ[:, 1].reshape(shape)
-        return ground_of
-    return io, eo, pixel, micro
+def _kanopus():
+    """The synthetic Kanopus-V-like micro-frame camera (NOT from the book): photolib.synthetic."""
+    from ..synthetic import microframe_camera
+    return microframe_camera()
 
 
 @functools.lru_cache(maxsize=4)
@@ -358,20 +336,19 @@ def kanopus_conventional_frame(step=200, heights=(0.0, 2000.0), levels=5):
     Returns ``(micro_fits, combined_fit, rigorous_error_px)``: the largest distance between the
     combined RPC and the rigorous collinearity projection at 300 random points of the matrices.
     """
-    from ..single_image import project as collinearity
-    from ..synthetic import image_to_pixel
-    io, eo, pixel, micro = kanopus_focal_plane()
-    fits = [rpcmod.fit_rpc(micro(i), KANOPUS_MATRIX, heights, levels=levels, step=step) for i in range(6)]
-    combined = rpcmod.conventional_frame_rpc([f.rpc for f in fits], KANOPUS_OFFSETS, [KANOPUS_MATRIX] * 6, heights,
-                                             levels=levels, step=step)
+    cam = _kanopus()
+    fits = [rpcmod.fit_rpc(cam.ground_of(i), cam.matrix_shape, heights, levels=levels, step=step)
+            for i in range(len(cam.offsets))]
+    combined = rpcmod.conventional_frame_rpc([f.rpc for f in fits], cam.offsets, [cam.matrix_shape] * len(fits),
+                                             heights, levels=levels, step=step)
     rng = np.random.default_rng(3)
     worst = 0.0
     for i in range(6):
         r, c, h = rng.uniform(0, 984, 50), rng.uniform(0, 1919, 50), rng.uniform(*heights, 50)
-        X, Y = micro(i)(r, c, h)
-        col_row = image_to_pixel(collinearity(np.column_stack([X, Y, h]), eo, io), KANOPUS_FRAME, pixel)
+        X, Y = cam.ground_of(i)(r, c, h)
+        row_col = cam.project(np.column_stack([X, Y, h]))
         pr, pc = rpcmod.project(combined.rpc, X, Y, h)
-        worst = max(worst, float(np.max(np.hypot(pr - col_row[:, 1], pc - col_row[:, 0]))))
+        worst = max(worst, float(np.max(np.hypot(pr - row_col[:, 0], pc - row_col[:, 1]))))
     return fits, combined, worst
 
 
@@ -380,6 +357,7 @@ def kanopus_summary(inputs: dict) -> dict:
     micro-frames' rigorous projection to < 0.01 px (otherwise the counts are withheld)."""
     _, combined, worst = kanopus_conventional_frame(step=int(inputs.get("step", 200)))
     good = worst < 0.01 and combined.check_error < 0.01
-    return {"matrices": len(KANOPUS_OFFSETS) if good else None,
-            "rows_of_matrices": len({r for r, _ in KANOPUS_OFFSETS}) if good else None,
+    offsets = _kanopus().offsets
+    return {"matrices": len(offsets) if good else None,
+            "rows_of_matrices": len({r for r, _ in offsets}) if good else None,
             "rigorous_error_px": worst}

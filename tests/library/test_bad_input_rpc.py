@@ -5,6 +5,7 @@ import pytest
 
 from catalogue import INF, NAN, Case, check_case
 from photolib.errors import ConvergenceError, DegenerateGeometryError, InputError
+from photolib.synthetic import MicroFrameCamera, microframe_camera
 from photolib.rpc import (RPC, BiasCorrectedRPC, RPCFit, RPCIntersection, conventional_frame_rpc, fit_bias, fit_rpc,
                           fit_rpc_points, intersect_rpc, locate, project, rpc_grid)
 
@@ -52,6 +53,14 @@ def with_(**changes):
 
 
 CASES = [
+    # the synthetic micro-frame camera of §8.18 (photolib.synthetic)
+    Case(microframe_camera, (), raises=None, check=lambda cam: len(cam.offsets) == 6, why="no input: a fixed synthetic camera"),
+    Case(MicroFrameCamera, (None, None, 0.0074, (10, 10), (5, 5), ((0, 0),)), raises=None, check=lambda cam: cam.pixel_size > 0,
+         why="a plain record; its methods validate"),
+    Case(microframe_camera().ground_of, (6,), raises=InputError, match="matrix number", why="no such matrix"),
+    Case(microframe_camera().ground_of, (True,), raises=InputError, why="a bool index"),
+    Case(microframe_camera().project, ([[0.0, NAN, 0.0]],), raises=InputError, why="NaN point"),
+    Case(microframe_camera().project, ([[0.0, 0.0]],), raises=InputError, why="2-D points"),
     # the constructor
     Case(RPC, kwargs=with_(line_off=NAN), why="NaN offset", raises=InputError, match="line_off"),
     Case(RPC, kwargs=with_(lat_scale=0.0), why="zero scale", raises=InputError, match="positive"),

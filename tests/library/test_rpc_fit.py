@@ -18,7 +18,7 @@ from photolib.rpc import (RPC, BiasCorrectedRPC, _rpc_eval, _terms, conventional
                           fit_rpc_points, intersect_rpc, locate, project, rpc_grid)
 from photolib.single_image import image_to_ground
 from photolib.single_image import project as collinearity
-from photolib.synthetic import image_to_pixel, pixel_to_image
+from photolib.synthetic import image_to_pixel, microframe_camera, pixel_to_image
 
 
 class Pushbroom:
@@ -344,40 +344,18 @@ def test_intersection_on_the_real_ventoux_pair(ventoux_pair):
 # Kanopus-V-like focal plane (NOT from the book, which prints no parameters): f = 1797.5 mm,
 # 1920 × 985-pixel matrices, 7.4 µm pixels (2.1 m GSD from 510 km); six matrices in two staggered
 # rows 1500 px apart along track, 100 px across-track overlap.
-KANOPUS_MATRIX = (985, 1920)
-KANOPUS_OFFSETS = [(0, 0), (0, 3640), (0, 7280), (1500, 1820), (1500, 5460), (1500, 9100)]
-KANOPUS_FRAME = (2485, 11020)
-
-
-def kanopus():
-    io = InteriorOrientation(f=1797.5)
-    eo = ExteriorOrientation(0.0, 0.0, 510e3, 0.004, -0.003, 0.02, order="wak")
-    pixel = 0.0074
-
-    def micro(i):
-        r0, c0 = KANOPUS_OFFSETS[i]
-
-        def ground_of(rows, cols, heights):
-            shape = np.shape(rows)
-            xy = np.stack(pixel_to_image(np.ravel(cols) + c0, np.ravel(rows) + r0, KANOPUS_FRAME, pixel), -1)
-            XYZ = image_to_ground(xy, np.ravel(np.broadcast_to(heights, shape)), eo, io)
-            return XYZ[:, 0].reshape(shape), XYZ[:, 1].reshape(shape)
-        return ground_of
-    return io, eo, pixel, micro
-
-
 def test_kanopus_micro_frames_combine_into_one_rpc():
-    io, eo, pixel, micro = kanopus()
+    cam = microframe_camera()
     heights = (0.0, 2000.0)
-    rpcs = [fit_rpc(micro(i), KANOPUS_MATRIX, heights, step=200).rpc for i in range(6)]
-    combined = conventional_frame_rpc(rpcs, KANOPUS_OFFSETS, [KANOPUS_MATRIX] * 6, heights, step=200)
+    rpcs = [fit_rpc(cam.ground_of(i), cam.matrix_shape, heights, step=200).rpc for i in range(6)]
+    combined = conventional_frame_rpc(rpcs, cam.offsets, [cam.matrix_shape] * 6, heights, step=200)
     assert combined.check_error < 0.01
     # against the rigorous micro-frame projection: ground points seen by each matrix
     rng = np.random.default_rng(3)
-    for i, (r0, c0) in enumerate(KANOPUS_OFFSETS):
+    for i, (r0, c0) in enumerate(cam.offsets):
         r, c, h = rng.uniform(0, 984, 50), rng.uniform(0, 1919, 50), rng.uniform(*heights, 50)
-        X, Y = micro(i)(r, c, h)
-        col_row = image_to_pixel(collinearity(np.column_stack([X, Y, h]), eo, io), KANOPUS_FRAME, pixel)
-        np.testing.assert_allclose(col_row[:, 1] - r0, r, atol=1e-6)   # the rigorous model is consistent
+        X, Y = cam.ground_of(i)(r, c, h)
+        row_col = cam.project(np.column_stack([X, Y, h]))
+        np.testing.assert_allclose(row_col[:, 0] - r0, r, atol=1e-6)   # the rigorous model is consistent
         pr, pc = project(combined.rpc, X, Y, h)
-        assert np.max(np.hypot(pr - col_row[:, 1], pc - col_row[:, 0])) < 0.01
+        assert np.max(np.hypot(pr - row_col[:, 0], pc - row_col[:, 1])) < 0.01

@@ -96,12 +96,15 @@ def table_8_2_bars(layouts=20, seed=0):
 
 def kanopus_layout():
     """The six micro-frames in the conventional frame (synthetic Kanopus-V-like layout)."""
+    from ...synthetic import microframe_camera
+
+    cam = microframe_camera()
     fig, ax = plt.subplots(figsize=(9, 2.8))
-    h, w = ch08_rpc.KANOPUS_MATRIX
-    for i, (r0, c0) in enumerate(ch08_rpc.KANOPUS_OFFSETS):
+    h, w = cam.matrix_shape
+    for i, (r0, c0) in enumerate(cam.offsets):
         ax.add_patch(plt.Rectangle((c0, r0), w, h, fill=True, alpha=0.35, color=f"C{i}"))
         ax.text(c0 + w / 2, r0 + h / 2, f"{i + 1}", ha="center", va="center")
-    H, W = ch08_rpc.KANOPUS_FRAME
+    H, W = cam.frame_shape
     ax.add_patch(plt.Rectangle((0, 0), W, H, fill=False, ls="--", color="k"))
     ax.set_xlim(-200, W + 200)
     ax.set_ylim(H + 200, -200)
