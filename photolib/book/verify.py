@@ -45,12 +45,57 @@ class Row:
     ok: bool
     detail: str = ""
     as_printed: str = ""
+    # The same facts as numbers, for machines (``photolib verify --json``) and for the explanation
+    # of a changed status: the printed value, the computed one, the unit, the tolerance of the
+    # check (half a unit of the last printed decimal, or the input-rounding bound), the value an
+    # erratum expects instead of the printed one, and the recorded reason or diagnosis.
+    book_value: object = None
+    computed_value: object = None
+    unit: str = ""
+    tolerance: float | None = None
+    expected: object = None
+    reason: str = ""
 
     def __post_init__(self):
         self.ok = bool(self.ok)          # comparisons of numpy values give numpy.bool_
+        self.computed_value = _plain(self.computed_value)
 
     def as_dict(self) -> dict:
         return dict(self.__dict__)
+
+    def explain(self) -> str:
+        """Why the recorded status no longer holds, in one paragraph (empty when it holds)."""
+        if self.ok:
+            return ""
+        if self.book == "printed formula":
+            return f"recorded {self.status}, but the printed formula now {self.computed.replace('equals', 'equals the')}."
+        if self.detail == "nothing computed for this quantity":
+            return f"recorded {self.status}, but nothing was computed for this quantity."
+        unit = f" {self.unit}" if self.unit else ""
+        facts = [f"recorded {self.status}", f"book {self.book}{unit}", f"computed {self.computed}{unit}"]
+        if _is_number(self.book_value) and _is_number(self.computed_value):
+            facts.append(f"difference {self.computed_value - self.book_value:+.3g}")
+        if self.tolerance is not None:
+            facts.append(f"tolerance {self.tolerance:g}")
+        if self.detail == "now reproduces":
+            verdict = "the computed value now rounds to the printed one: record it as reproduced"
+        elif self.status == "reproduced":
+            verdict = "the computed value no longer rounds to the printed one"
+        elif self.status == "input-rounding":
+            verdict = "the difference exceeds the recorded bound"
+        elif self.status == "erratum":
+            verdict = f"the computed value no longer rounds to the recorded correct value {self.expected}"
+        else:
+            verdict = "the transcribed value differs from the computed one"
+        reason = f" Recorded reason: {self.reason}" if self.reason else ""
+        return ", ".join(facts) + f" — {verdict}.{reason}"
+
+
+def _plain(value):
+    """numpy scalars as Python numbers (JSON and comparisons); other values unchanged."""
+    if hasattr(value, "item") and getattr(value, "shape", None) == ():
+        return value.item()
+    return value
 
 
 def _is_number(value) -> bool:
@@ -94,11 +139,13 @@ def check_example(example: Example) -> list[Row]:
         printed_run = as_printed.get(q.name)
         same = matches_printed(value, q.value, q.decimals)
         detail = ""
+        tolerance = 0.5 * 10.0 ** (-(q.decimals or 0)) if _is_number(q.value) else None
         if q.status == "reproduced":
             ok = same
         elif q.status == "input-rounding":
             ok = (not same) and _is_number(value) and abs(value - q.value) <= q.bound
             detail = f"bound {q.bound}"
+            tolerance = q.bound
         elif q.status == "erratum":
             right = matches_printed(value, q.correct, q.correct_decimals if q.correct_decimals is not None else q.decimals)
             ok = (not same) and right
@@ -113,8 +160,14 @@ def check_example(example: Example) -> list[Row]:
             ok = value is None or same
         if not ok and value is None and q.status != "transcribed":
             detail = "nothing computed for this quantity"
+        elif not ok and same and q.status in ("input-rounding", "erratum", "not-reproducible"):
+            detail = "now reproduces"
         rows.append(Row(example.chapter, example.id, q.name, q.printed, format_value(value, q.decimals),
-                        q.status, ok, detail, format_value(printed_run, q.decimals) if printed_run is not None else ""))
+                        q.status, ok, detail, format_value(printed_run, q.decimals) if printed_run is not None else "",
+                        book_value=q.value, computed_value=value if _is_number(_plain(value)) or isinstance(value, str)
+                        else None, unit=q.unit, tolerance=tolerance,
+                        expected=q.correct if q.status == "erratum" else None,
+                        reason=q.diagnosis or q.reason))
     return rows
 
 
@@ -123,7 +176,8 @@ def check_formula(formula: Formula) -> Row:
     agrees = bool(resolve(formula.compute)(formula.inputs)["printed_equals_derived"])
     ok = agrees if formula.status == "reproduced" else not agrees
     return Row(formula.chapter, formula.id, formula.equation, "printed formula",
-               "equals derivation" if agrees else "differs from derivation", formula.status, ok)
+               "equals derivation" if agrees else "differs from derivation", formula.status, ok,
+               reason=formula.diagnosis)
 
 
 def verify(chapters=None, jobs: int = 1) -> list[Row]:

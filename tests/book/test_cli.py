@@ -24,7 +24,9 @@ def test_version(capsys):
 
 @pytest.mark.parametrize("argv", [["verify", "--chapter", "99"], ["verify", "--chapter", "x"],
                                   ["verify", "--no-such-flag"], ["no-such-command"], [],
-                                  ["verify", "--jobs", "0"], ["verify", "--jobs", "two"]])
+                                  ["verify", "--jobs", "0"], ["verify", "--jobs", "two"],
+                                  ["show"], ["show", "no-such-example"], ["show", "4.3-dlt", "--chapter", "99"],
+                                  ["list", "--chapter", "99"], ["errata", "--chapter", "99"]])
 def test_usage_errors_are_one_line_and_exit_2(argv, capsys):
     try:
         code = main(argv)
@@ -50,8 +52,9 @@ def test_parallel_verify_gives_the_same_rows_in_the_same_order():
     assert parallel == serial and len(serial) > 100
 
 
-def test_a_changed_status_exits_1(tmp_path, monkeypatch, capsys):
-    """Record a wrong status for one published number: verify must flag it and exit 1."""
+@pytest.fixture
+def one_wrong_status(tmp_path, monkeypatch):
+    """A copy of textbook/ in which the first reproduced number of Chapter 1 is recorded as not reproducible."""
     for toml in (ROOT / "textbook").glob("*.toml"):
         shutil.copy(toml, tmp_path / toml.name)
     text = (tmp_path / "ch01.toml").read_text(encoding="utf-8")
@@ -60,14 +63,78 @@ def test_a_changed_status_exits_1(tmp_path, monkeypatch, capsys):
                                         + text[first + len('status = "reproduced"'):], encoding="utf-8")
     monkeypatch.setenv("PHOTOLIB_TEXTBOOK", str(tmp_path))
     from photolib.book import textbook
-    textbook.load_chapter.cache_clear() if hasattr(textbook.load_chapter, "cache_clear") else None
-    try:
-        assert main(["verify", "--chapter", "1", "--json"]) == 1
-        rows = json.loads(capsys.readouterr().out)["rows"]
-        assert sum(not r["ok"] for r in rows) == 1
-    finally:
-        monkeypatch.delenv("PHOTOLIB_TEXTBOOK")
-        textbook.load_chapter.cache_clear() if hasattr(textbook.load_chapter, "cache_clear") else None
+    textbook.load_chapter.cache_clear()
+    yield
+    monkeypatch.delenv("PHOTOLIB_TEXTBOOK")
+    textbook.load_chapter.cache_clear()
+
+
+def test_a_changed_status_exits_1(one_wrong_status, capsys):
+    """Record a wrong status for one published number: verify must flag it and exit 1."""
+    assert main(["verify", "--chapter", "1", "--json", "--jobs", "1"]) == 1
+    rows = json.loads(capsys.readouterr().out)["rows"]
+    assert sum(not r["ok"] for r in rows) == 1
+
+
+def test_only_changed_says_what_changed(one_wrong_status, capsys):
+    """--only-changed prints the summary and the one changed row, with the old status, both values,
+    the tolerance and the recorded reason."""
+    assert main(["verify", "--chapter", "1", "--only-changed", "--jobs", "1"]) == 1
+    out = capsys.readouterr().out
+    lines = out.splitlines()
+    assert "published quantities" in lines[0] and "not-reproducible 1" in out
+    assert any(line.startswith("status no longer holds: 1") for line in lines[:3])
+    table = [line for line in lines if line.startswith("1   ")]
+    assert len(table) == 1 and table[0].rstrip().endswith("CHANGED")
+    explanation = " ".join(out[out.index("What changed:"):].split())       # unwrapped
+    for fact in ("recorded not-reproducible", "book 0,98421", "computed 0.9842078", "tolerance 5e-06",
+                 "now rounds to the printed one", "Recorded reason: a test"):
+        assert fact in explanation, fact
+
+
+def test_verify_json_rows_carry_numbers(capsys):
+    assert main(["verify", "--chapter", "4", "--json", "--jobs", "1"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["summary"]["changed"] == 0 and data["chapters"][0]["chapter"] == 4
+    dlt = next(r for r in data["rows"] if r["example"] == "4.3-dlt" and r["quantity"] == "L4_img1")
+    assert dlt["book_value"] == -96.237 and isinstance(dlt["computed_value"], float)
+    assert dlt["status"] == "input-rounding" and dlt["tolerance"] > 0 and dlt["reason"]
+    assert abs(dlt["computed_value"] - dlt["book_value"]) <= dlt["tolerance"]
+    erratum = next(r for r in data["rows"] if r["status"] == "erratum" and r["expected"] is not None)
+    assert erratum["reason"], "an erratum row carries its diagnosis"
+
+
+def test_verify_fits_100_columns_with_the_summary_first(capsys):
+    assert main(["verify", "--chapter", "1", "--chapter", "4", "--jobs", "1"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("413 published quantities and formulas in chapters 1, 4")
+    assert max(map(len, lines)) <= 100
+    assert main(["verify", "--chapter", "1", "--wide", "--jobs", "1"]) == 0
+    assert max(map(len, capsys.readouterr().out.splitlines())) > 100
+
+
+def test_list_and_show(capsys):
+    assert main(["list", "--chapter", "4"]) == 0
+    out = capsys.readouterr().out
+    assert "4.3-dlt" in out and max(map(len, out.splitlines())) <= 100
+    assert main(["show", "4.3-dlt"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("4.3-dlt: §4.3") and "inputs (as printed)" in out
+    assert "L4_img1" in out and "input-rounding" in out
+    assert main(["show", "4.4.16-essential-matrix"]) == 0          # a formula erratum
+    out = capsys.readouterr().out
+    assert "printed:" in out and "status: erratum" in out and "diagnosis:" in out
+
+
+def test_errata_lists_every_erratum_with_its_correction(capsys):
+    from photolib.book.errata import errata
+    assert main(["errata", "--chapter", "4", "--json"]) == 0
+    records = json.loads(capsys.readouterr().out)
+    assert len(records) == len(errata([4], recompute=False)) > 0
+    assert all(r["status"] == "erratum" and r["diagnosis"] for r in records)
+    assert main(["errata", "--chapter", "4"]) == 0
+    out = capsys.readouterr().out
+    assert out.rstrip().endswith(f"{len(records)} errata") and "correct" in out
 
 
 def test_the_wheel_carries_the_published_numbers_and_verifies_outside_the_checkout(tmp_path):
