@@ -21,3 +21,10 @@ def test_book_builds_without_warnings(tmp_path):
     html = tmp_path / "_build" / "html"
     assert (html / "chapters" / "api.html").is_file()
     assert (html / "chapters" / "api" / "photolib.lsq.html").is_file()
+    # Formulas typeset offline: MathJax is served from the book itself, never from a CDN.
+    mathjax = html / "_static" / "mathjax" / "tex-chtml.js"
+    assert mathjax.is_file(), "MathJax was not copied into the built book"
+    assert (html / "_static" / "mathjax" / "output" / "chtml" / "fonts" / "woff-v2").is_dir()
+    page = (html / "chapters" / "ch01_single_image.html").read_text(encoding="utf-8")
+    assert "_static/mathjax/tex-chtml.js" in page
+    assert "cdn.jsdelivr.net/npm/mathjax" not in page and "mathjax@" not in page
