@@ -597,8 +597,8 @@ def _positive(value, what) -> float:
 def check_height_factor(contour_interval: float, scale_denominator: float, tolerances, stage: str = "check") -> float:
     """The factor of the contour interval h for mean height discrepancies, 3.7.6 / 3.7.7.
 
-    ``stage="check"``: check points after external orientation (3.7.6); ``stage="common"``: common
-    points of adjacent strips (3.7.7). The category is (a) h = 1 m, or h = 0.5 m at 1:1000 and
+    ``stage="check"``: check points after external orientation (clause 3.7.6); ``stage="common"``: common
+    points of adjacent strips (clause 3.7.7). The category is (a) h = 1 m, or h = 0.5 m at 1:1000 and
     1:500; (b) h = 2 or 2.5 m, or h = 0.5 m at 1:2000 and 1:5000; (c) h = 5 or 10 m.
 
     Parameters
