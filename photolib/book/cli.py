@@ -121,8 +121,8 @@ def _run_verify(args, out) -> int:
     changed = [r for r in rows if not r.ok]
     if args.json:
         shown = changed if args.only_changed else rows
-        json.dump({"summary": counts, "chapters": per_chapter,
-                   "rows": [dict(r.as_dict(), explanation=r.explain()) for r in shown]},
+        json.dump({"version": __version__, "summary": counts, "chapters": per_chapter,
+                   "rows": [dict(r.as_dict(), explanation=r.explain(), version=__version__) for r in shown]},
                   out, ensure_ascii=False, indent=1, default=str)
         out.write("\n")
         return STATUS_CHANGED if changed else 0
@@ -205,6 +205,8 @@ def _run_show(args, out) -> int:
               + f"\n  chapter {number}, {seed}{lines}\n")
     if entry.calls:
         out.write(_wrap(f"computed by: {entry.calls}", "  ") + "\n")
+    if entry.compute:
+        out.write(_wrap(f"adapter: {entry.compute}(inputs)", "  ") + "\n")
     if entry.inputs:
         out.write("  inputs (as printed):\n" + "\n".join(_inputs_text(entry.inputs, args.wide)) + "\n")
     out.write("\n" + repr(example_table(number, entry.id)) + "\n")

@@ -55,10 +55,16 @@ class Row:
     tolerance: float | None = None
     expected: object = None
     reason: str = ""
+    observed_status: str = ""         # the status the computation supports now (equal to ``status`` when ok)
+    delta: float | None = None        # computed − book, for numbers
 
     def __post_init__(self):
         self.ok = bool(self.ok)          # comparisons of numpy values give numpy.bool_
         self.computed_value = _plain(self.computed_value)
+        if self.delta is None and _is_number(self.book_value) and _is_number(self.computed_value):
+            self.delta = self.computed_value - self.book_value
+        if not self.observed_status:
+            self.observed_status = self.status if self.ok else "changed"
 
     def as_dict(self) -> dict:
         return dict(self.__dict__)
@@ -72,7 +78,8 @@ class Row:
         if self.detail == "nothing computed for this quantity":
             return f"recorded {self.status}, but nothing was computed for this quantity."
         unit = f" {self.unit}" if self.unit else ""
-        facts = [f"recorded {self.status}", f"book {self.book}{unit}", f"computed {self.computed}{unit}"]
+        facts = [f"recorded {self.status}, now {self.observed_status}", f"book {self.book}{unit}",
+                 f"computed {self.computed}{unit}"]
         if _is_number(self.book_value) and _is_number(self.computed_value):
             facts.append(f"difference {self.computed_value - self.book_value:+.3g}")
         if self.tolerance is not None:
@@ -162,13 +169,28 @@ def check_example(example: Example) -> list[Row]:
             detail = "nothing computed for this quantity"
         elif not ok and same and q.status in ("input-rounding", "erratum", "not-reproducible"):
             detail = "now reproduces"
+        observed = q.status if ok else _observed_status(value, q, same)
         rows.append(Row(example.chapter, example.id, q.name, q.printed, format_value(value, q.decimals),
                         q.status, ok, detail, format_value(printed_run, q.decimals) if printed_run is not None else "",
                         book_value=q.value, computed_value=value if _is_number(_plain(value)) or isinstance(value, str)
                         else None, unit=q.unit, tolerance=tolerance,
                         expected=q.correct if q.status == "erratum" else None,
-                        reason=q.diagnosis or q.reason))
+                        reason=q.diagnosis or q.reason, observed_status=observed))
     return rows
+
+
+def _observed_status(value, q, same: bool) -> str:
+    """The status that the computed value supports, whatever was recorded (for a changed row)."""
+    if value is None:
+        return "not computed"
+    if same:
+        return "reproduced"
+    if _is_number(value) and q.bound is not None and abs(value - q.value) <= q.bound:
+        return "input-rounding"
+    if q.correct is not None and matches_printed(value, q.correct,
+                                                 q.correct_decimals if q.correct_decimals is not None else q.decimals):
+        return "erratum"
+    return "differs (unclassified)"
 
 
 def check_formula(formula: Formula) -> Row:
@@ -177,7 +199,7 @@ def check_formula(formula: Formula) -> Row:
     ok = agrees if formula.status == "reproduced" else not agrees
     return Row(formula.chapter, formula.id, formula.equation, "printed formula",
                "equals derivation" if agrees else "differs from derivation", formula.status, ok,
-               reason=formula.diagnosis)
+               reason=formula.diagnosis, observed_status="reproduced" if agrees else "erratum")
 
 
 def verify(chapters=None, jobs: int = 1) -> list[Row]:

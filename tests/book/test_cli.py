@@ -73,7 +73,9 @@ def test_a_changed_status_exits_1(one_wrong_status, capsys):
     """Record a wrong status for one published number: verify must flag it and exit 1."""
     assert main(["verify", "--chapter", "1", "--json", "--jobs", "1"]) == 1
     rows = json.loads(capsys.readouterr().out)["rows"]
-    assert sum(not r["ok"] for r in rows) == 1
+    changed = [r for r in rows if not r["ok"]]
+    assert len(changed) == 1
+    assert (changed[0]["status"], changed[0]["observed_status"]) == ("not-reproducible", "reproduced")
 
 
 def test_only_changed_says_what_changed(one_wrong_status, capsys):
@@ -87,7 +89,7 @@ def test_only_changed_says_what_changed(one_wrong_status, capsys):
     table = [line for line in lines if line.startswith("1   ")]
     assert len(table) == 1 and table[0].rstrip().endswith("CHANGED")
     explanation = " ".join(out[out.index("What changed:"):].split())       # unwrapped
-    for fact in ("recorded not-reproducible", "book 0,98421", "computed 0.9842078", "tolerance 5e-06",
+    for fact in ("recorded not-reproducible, now reproduced", "book 0,98421", "computed 0.9842078", "tolerance 5e-06",
                  "now rounds to the printed one", "Recorded reason: a test"):
         assert fact in explanation, fact
 
@@ -98,6 +100,8 @@ def test_verify_json_rows_carry_numbers(capsys):
     assert data["summary"]["changed"] == 0 and data["chapters"][0]["chapter"] == 4
     dlt = next(r for r in data["rows"] if r["example"] == "4.3-dlt" and r["quantity"] == "L4_img1")
     assert dlt["book_value"] == -96.237 and isinstance(dlt["computed_value"], float)
+    assert dlt["delta"] == pytest.approx(dlt["computed_value"] - dlt["book_value"])
+    assert dlt["observed_status"] == dlt["status"] and dlt["version"] == photolib.__version__ == data["version"]
     assert dlt["status"] == "input-rounding" and dlt["tolerance"] > 0 and dlt["reason"]
     assert abs(dlt["computed_value"] - dlt["book_value"]) <= dlt["tolerance"]
     erratum = next(r for r in data["rows"] if r["status"] == "erratum" and r["expected"] is not None)
