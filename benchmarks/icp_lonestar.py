@@ -18,17 +18,10 @@ import time
 import numpy as np
 
 from photolib import datasets
+from photolib.pointcloud import voxel_downsample
 from photolib.registration import RigidTransform, icp
 
 OFFSET = RigidTransform(0.30, -0.35, 0.20, *np.deg2rad([2.0, -3.0, 3.5]))
-
-
-def voxel_downsample(points, size):
-    keys = np.floor((points - points.min(axis=0)) / size).astype(np.int64)
-    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
-    out = np.zeros((len(counts), 3))
-    np.add.at(out, inverse.ravel(), points)
-    return out / counts[:, None]
 
 
 def errors(T_est):

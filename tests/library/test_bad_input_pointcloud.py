@@ -26,6 +26,14 @@ def _not_las(tmp):
 
 
 CASES = [
+    Case(pc.voxel_downsample, ([[0, 0, NAN]], 1.0), raises=InputError, match="NaN", why="NaN coordinate"),
+    Case(pc.voxel_downsample, ([[0.0, 0.0]], 1.0), raises=InputError, why="2-D points"),
+    Case(pc.voxel_downsample, (_OK, 0.0), raises=InputError, match="positive", why="zero voxel size"),
+    Case(pc.voxel_downsample, (_OK, NAN), raises=InputError, match="positive", why="NaN voxel size"),
+    Case(pc.voxel_downsample, ([[0.0, 0, 0], [1e12, 1e12, 1e12]], 1e-3), raises=InputError, match="too small",
+         why="a grid too fine to index"),
+    Case(pc.voxel_downsample, ([[0.0, 0, 0], [0.0, 0, 0]], 1.0), raises=None,
+         check=lambda r: r.shape == (1, 3) and np.all(r == 0), why="duplicate points: one voxel"),
     Case(pc.PointCloud, ([[0, 0, NAN]],), raises=InputError, match="NaN", why="NaN coordinate"),
     Case(pc.PointCloud, ([[0, 0, INF]],), raises=InputError, match="NaN or inf", why="inf coordinate"),
     Case(pc.PointCloud, (np.zeros((4, 2)),), raises=InputError, match="shape", why="two columns"),

@@ -111,3 +111,17 @@ def test_real_files_without_a_linear_unit():
     for name in ("sample_c.las", "lone-star.laz"):
         with pytest.raises(InputError, match="unit"):
             _real(name)
+
+
+def test_voxel_downsample_matches_a_plain_dictionary_of_voxels():
+    """Each occupied voxel gives the mean of its points (checked against a pure-Python grouping)."""
+    from collections import defaultdict
+
+    from photolib.pointcloud import voxel_downsample
+    P = np.random.default_rng(5).uniform(-3, 7, (2000, 3))
+    groups = defaultdict(list)
+    lo = P.min(axis=0)
+    for p in P:
+        groups[tuple(np.floor((p - lo) / 0.8).astype(int))].append(p)
+    expected = np.array([np.mean(groups[k], axis=0) for k in sorted(groups)])
+    np.testing.assert_allclose(voxel_downsample(P, 0.8), expected, rtol=0, atol=1e-12)
