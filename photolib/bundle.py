@@ -32,6 +32,16 @@ images are adjusted in seconds. The Jacobian comes from the sympy model
 
 Weights follow (3.5.7), p = σ₀²/m², with the unit weight σ₀ equal to the image measurement
 accuracy, so μ (3.5.12) is in millimetres of the image and estimates the image noise.
+
+Chapter 11, §11.6 adds the geometric conditions of terrestrial surveys — measured distances
+between points (11.6.1), the base (11.6.2), centre-to-point distances (11.6.3), vertical lines
+(11.6.4), horizontal planes (11.6.5) and the (corrected) plane condition — to the bundle as
+weighted correction equations (11.6.7) (``conditions=`` of :func:`bundle_adjustment` and
+:func:`self_calibrating_bundle_adjustment`; F and ∂F/∂p from
+:func:`photolib.terrestrial.condition_equations`). They join the datum test (a distance gives the
+scale). A condition couples several points, which the per-point 3×3 elimination (3.5.16) of the
+block solver cannot hold, so a block with conditions is solved by the dense solver of the same
+engine (:func:`photolib.lsq.gauss_newton`), with the same correction equations.
 """
 
 from __future__ import annotations
@@ -47,7 +57,7 @@ from . import _bundle_generated
 from .camera import ExteriorOrientation, ExteriorOrientations, InteriorOrientation, correct_distortion
 from .errors import ConvergenceError, DegenerateGeometryError, InputError, PointBehindCameraError
 from .lsq import (BlockCorrectionEquations, GlobalBlockCorrectionEquations, block_equations_dense, block_gauss_newton,
-                  global_block_equations_dense)
+                  gauss_newton, global_block_equations_dense)
 from .rotation import check_order, rotation_angles, rotation_matrix
 from .single_image import project_to_images
 
@@ -92,6 +102,10 @@ class BundleResult:
     order : str
     timings : dict
         Seconds per stage of the solver.
+    condition_residuals : ndarray
+        V of the geometric conditions of §11.6 (``conditions=`` of :func:`bundle_adjustment`), one
+        per condition equation in the order of the conditions (a vertical line gives two, X then
+        Y), in the units of the condition; empty without conditions.
 
     References
     ----------
@@ -127,6 +141,7 @@ class BundleResult:
     history: list
     order: str
     timings: dict = field(default_factory=dict)
+    condition_residuals: np.ndarray = field(default_factory=lambda: np.zeros(0))  # v of the §11.6 conditions
 
     def eo(self, i: int) -> ExteriorOrientation:
         """Exterior orientation of image ``i``."""
@@ -285,24 +300,34 @@ def _per_item(sigma, n, what):
     return s
 
 
-def _datum_rank(anchor_xyz, anchor_mask, angle_rows, centre, scale):
-    """Rank (of 7) of the similarity transformations (datum) that the control fixes.
-
-    Each controlled coordinate of a point X (control point or GNSS centre) is moved by an
-    infinitesimal similarity as dX = t + r × X + s·X; INS angles by ≈ r. The block is free to
-    move in the directions of the null space of these rows — its datum defect.
-    """
-    Xc = (np.asarray(anchor_xyz, dtype=float).reshape(-1, 3) - centre) / scale
+def _similarity_rows(Xc):
+    """d(X)/d(t, r, s) of the infinitesimal similarity dX = t + r × X + s·X at the points Xc: (p, 3, 7)."""
     D = np.zeros((len(Xc), 3, 7))
     D[:, 0, 0] = D[:, 1, 1] = D[:, 2, 2] = 1.0
     D[:, 0, 4], D[:, 0, 5], D[:, 0, 6] = Xc[:, 2], -Xc[:, 1], Xc[:, 0]
     D[:, 1, 3], D[:, 1, 5], D[:, 1, 6] = -Xc[:, 2], Xc[:, 0], Xc[:, 1]
     D[:, 2, 3], D[:, 2, 4], D[:, 2, 6] = Xc[:, 1], -Xc[:, 0], Xc[:, 2]
+    return D
+
+
+def _datum_rank(anchor_xyz, anchor_mask, angle_rows, centre, scale, extra_rows=None):
+    """Rank (of 7) of the similarity transformations (datum) that the control fixes.
+
+    Each controlled coordinate of a point X (control point or GNSS centre) is moved by an
+    infinitesimal similarity as dX = t + r × X + s·X; INS angles by ≈ r. ``extra_rows`` (r, 7)
+    are further rows of the same kind — the geometric conditions of §11.6
+    (:func:`_condition_datum_rows`). The block is free to move in the directions of the null
+    space of these rows — its datum defect.
+    """
+    Xc = (np.asarray(anchor_xyz, dtype=float).reshape(-1, 3) - centre) / scale
+    D = _similarity_rows(Xc)
     ins = np.asarray(angle_rows, bool).reshape(-1, 3)
     M = D[np.asarray(anchor_mask, bool).reshape(-1, 3)]
     if ins.size:
         angles = np.hstack([np.zeros((3, 3)), np.eye(3), np.zeros((3, 1))])
         M = np.vstack([M, np.broadcast_to(angles, (len(ins), 3, 7))[ins]])
+    if extra_rows is not None and len(extra_rows):
+        M = np.vstack([M.reshape(-1, 7), np.asarray(extra_rows, dtype=float).reshape(-1, 7)])
     if M.size == 0:
         return 0
     sv = np.linalg.svd(M, compute_uv=False)
@@ -325,13 +350,15 @@ class _Block:
     frame_obs: tuple | None      # (values, weights) of GNSS centres / INS angles (3.5.18)/(3.5.19)
     ctrl_idx: np.ndarray         # indices of the control points
     ctrl_xyz: np.ndarray         # their coordinates (NaN: not controlled)
+    conditions: tuple = ()       # validated geometric conditions of §11.6 (_Condition)
 
 
 def _prepare_block(observations, cameras0, points0, io, control, control_sigma, gnss, gnss_sigma, ins, ins_sigma,
-                   sigma_image, order, correct_distortion_first=True):
+                   sigma_image, order, correct_distortion_first=True, conditions=None):
     """Validate a block and assemble control, GNSS and INS observations — shared by every bundle variant.
 
-    Returns a :class:`_Block`. Raises the errors documented in :func:`bundle_adjustment`.
+    ``conditions``, parsed by :func:`_parse_conditions`, join the datum test. Returns a
+    :class:`_Block`. Raises the errors documented in :func:`bundle_adjustment`.
     """
     check_order(order)
     if not isinstance(io, InteriorOrientation):
@@ -351,6 +378,7 @@ def _prepare_block(observations, cameras0, points0, io, control, control_sigma, 
         raise InputError("a point is measured twice in the same image")
     if not sigma_image > 0:
         raise InputError("sigma_image must be positive")
+    conditions = _parse_conditions(conditions, n, k)
     if correct_distortion_first and io.has_distortion:
         xy = correct_distortion(xy, io)
 
@@ -436,20 +464,23 @@ def _prepare_block(observations, cameras0, points0, io, control, control_sigma, 
         angle_rows = ang[ang.any(1)]
     centre = cams[:, :3].mean(axis=0)
     scale = max(float(np.ptp(cams[:, :2], axis=0).max()), float(np.abs(cams[:, 2] - pts[:, 2].mean()).mean()), 1.0)
-    rank = _datum_rank(anchors, masks, angle_rows, centre, scale)
+    extra = None if not conditions else _condition_datum_rows(conditions, cams, pts, centre, scale)
+    rank = _datum_rank(anchors, masks, angle_rows, centre, scale, extra)
     if rank < 7:
+        what = "the control and the conditions fix" if conditions else "the control fixes"
         raise DegenerateGeometryError(
-            f"datum defect: the control fixes only {rank} of the 7 datum parameters (3 shifts, 3 rotations, "
-            "scale); add control points (at least 3 not on one line, e.g. XYZ points in the block corners) "
-            "or GNSS centres")
+            f"datum defect: {what} only {rank} of the 7 datum parameters (3 shifts, 3 rotations, "
+            "scale); add control points (at least 3 not on one line, e.g. XYZ points in the block corners), "
+            "GNSS centres or, for the scale, a measured distance (§11.6)")
 
     return _Block(image=image, point=point, xy=xy, cams=cams, pts=pts, n=n, k=k, free_points=free_points,
-                  point_obs=point_obs, frame_obs=frame_obs, ctrl_idx=ctrl_idx, ctrl_xyz=ctrl_xyz)
+                  point_obs=point_obs, frame_obs=frame_obs, ctrl_idx=ctrl_idx, ctrl_xyz=ctrl_xyz,
+                  conditions=conditions)
 
 
 def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, *, control=None,
                       sigma_control=None, gnss=None, sigma_centre=0.05, ins=None, sigma_angles=np.radians(0.005),
-                      sigma_image: float = 0.005, order: str = "kaw", max_iter: int = 30,
+                      conditions=None, sigma_image: float = 0.005, order: str = "kaw", max_iter: int = 30,
                       tol_centre: float = 1e-5, tol_angle: float = 1e-9, tol_point: float = 1e-5,
                       covariance: bool | str = "auto", dense_limit: int = 0, progress=None, **legacy) -> BundleResult:
     """Adjust a block of frame images by the bundle method, §3.5.
@@ -476,6 +507,24 @@ def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, 
         GNSS projection centres (3.5.18), NaN rows for images without them; accuracy ``gnss_sigma`` (m).
     ins : (n, 3) array, optional
         Measured ω, α, κ (3.5.19), NaN rows where missing; accuracy ``ins_sigma`` (rad).
+    conditions : list of (kind, indices, measured, sigma), optional
+        Geometric conditions of terrestrial surveys, §11.6 (11.6.1)–(11.6.7), added to the
+        adjustment as weighted correction equations ∂F/∂p·δ + F = v with weight (σ_image/σ)²; F
+        and ∂F/∂p are those of :func:`photolib.terrestrial.condition_equations`. ``kind`` and
+        ``indices``: ``"distance"`` (point i, point j) (11.6.1); ``"base"`` (image i, image j):
+        the distance of their projection centres (11.6.2); ``"centre_distance"`` (point i,
+        image j) (11.6.3); ``"vertical"`` (point i, point j): X_i = X_j, Y_i = Y_j (11.6.4);
+        ``"horizontal"`` (point i, point j): Z_i = Z_j (11.6.5); ``"coplanar"`` (points i, j,
+        k, l): the corrected plane condition replacing (11.6.6). ``measured``: the measured
+        length (m) of the three distance kinds, None for the others. ``sigma``: its accuracy in
+        the units of F (m; m³ for ``"coplanar"``, whose F is the determinant, six times the volume
+        of the tetrahedron). Conditions join the datum test: a distance fixes the scale, a
+        vertical line the two tilts, a horizontal pair one tilt. A condition couples several
+        points, so with conditions the block is solved by the dense path of the engine
+        (:func:`photolib.lsq.gauss_newton` on :func:`photolib.lsq.block_equations_dense` plus
+        the condition rows) instead of the reduction (3.5.16): meant for terrestrial blocks of
+        up to a few hundred unknowns; ``covariance`` and ``dense_limit`` are then ignored (m_j
+        are always computed).
     sigma_image : float
         Accuracy of the image measurements (mm) — the unit weight σ₀ of (3.5.7).
     order : {"kaw", "wak"}
@@ -512,7 +561,8 @@ def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, 
 
     References
     ----------
-    Chibunichev (2022), §3.5, eqs. (3.5.1)–(3.5.12); §1.8, eqs. (1.8.5)–(1.8.10). Weighted control, GNSS and INS: eqs. (3.5.17)–(3.5.19); reduction (3.5.13)–(3.5.16).
+    Chibunichev (2022), §3.5, eqs. (3.5.1)–(3.5.12); §1.8, eqs. (1.8.5)–(1.8.10). Weighted control, GNSS and INS:
+    eqs. (3.5.17)–(3.5.19); reduction (3.5.13)–(3.5.16). Conditions: §11.6, eqs. (11.6.1)–(11.6.7).
 
     Examples
     --------
@@ -524,13 +574,27 @@ def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, 
     >>> res = bundle_adjustment(blk.observations, cams0, pts0, blk.io, control=control, order=blk.order)
     >>> res.iterations, float(np.abs(res.points - blk.points).max()) < 1e-6
     (4, True)
+
+    A measured distance (11.6.1) gives the scale: one image's position and attitude known (as
+    GNSS and INS) leave only the scale free, and the distance of points 0 and 1 fixes it.
+
+    >>> d01 = float(np.linalg.norm(blk.points[0] - blk.points[1]))
+    >>> res = bundle_adjustment(blk.observations, cams0, pts0, blk.io, order=blk.order,
+    ...                         gnss=np.where(np.arange(8)[:, None] == 0, blk.cameras[:, :3], np.nan),
+    ...                         ins=np.where(np.arange(8)[:, None] == 0, blk.cameras[:, 3:], np.nan),
+    ...                         sigma_centre=1e-4, sigma_angles=1e-7, conditions=[("distance", (0, 1), d01, 0.001)])
+    >>> float(np.abs(res.points - blk.points).max()) < 1e-4, res.condition_residuals.shape
+    (True, (1,))
     """
     sigma_control, sigma_centre, sigma_angles = _renamed(
         legacy, "bundle_adjustment", sigma_control=sigma_control, sigma_centre=sigma_centre, sigma_angles=sigma_angles)
     b = _prepare_block(observations, cameras0, points0, io, control, sigma_control, gnss, sigma_centre, ins,
-                       sigma_angles, sigma_image, order)
+                       sigma_angles, sigma_image, order, conditions=conditions)
     image, point, xy, cams, pts, n, k = b.image, b.point, b.xy, b.cams, b.pts, b.n, b.k
     free_points, point_obs, frame_obs = b.free_points, b.point_obs, b.frame_obs
+    if b.conditions:
+        return _bundle_with_conditions(b, io, order, sigma_image, gnss is not None, ins is not None, max_iter,
+                                       (tol_centre, tol_angle, tol_point), progress)
 
     use_cov = (6 * n <= 3000) if covariance == "auto" else bool(covariance)
     # the correction equations at the start values: points behind an image there (bad start values)
@@ -560,6 +624,29 @@ def bundle_adjustment(observations, cameras0, points0, io: InteriorOrientation, 
                         ins_residuals=fr[:, 3:] if ins is not None else zeros3,
                         iterations=adj.iterations, history=adj.history, order=order,
                         timings=adj.timings)
+
+
+def _bundle_with_conditions(b, io, order, sigma_image, with_gnss, with_ins, max_iter, tols, progress):
+    """:func:`bundle_adjustment` with the conditions of §11.6: the dense path (:func:`_dense_block_adjustment`)."""
+    bundle_correction_equations(b.image, b.point, b.xy, b.cams, b.pts, io, order)    # bad start values: as such
+    tol_centre, tol_angle, tol_point = tols
+
+    def linearize(frames, points, glob):
+        return bundle_correction_equations(b.image, b.point, b.xy, frames, points, io, order)
+
+    try:
+        adj = _dense_block_adjustment(b, linearize, None, None, b.conditions, sigma_image,
+                                      ([tol_centre] * 3 + [tol_angle] * 3, tol_point, 0.0), max_iter, progress)
+    except PointBehindCameraError as exc:
+        raise ConvergenceError(f"the iteration diverged: {exc}") from exc
+    zeros3 = np.zeros((b.n, 3))
+    return BundleResult(cameras=adj.frames, points=adj.points, mu=adj.mu, dof=adj.dof, cameras_std=adj.frames_std,
+                        points_std=adj.points_std, residuals=adj.residuals,
+                        control_residuals=adj.point_residuals if b.point_obs is not None else np.zeros((b.k, 3)),
+                        gnss_residuals=adj.frame_residuals[:, :3] if with_gnss else zeros3,
+                        ins_residuals=adj.frame_residuals[:, 3:] if with_ins else zeros3,
+                        iterations=adj.iterations, history=adj.history, order=order,
+                        condition_residuals=adj.condition_residuals)
 
 
 @dataclass(frozen=True)
@@ -658,6 +745,275 @@ def check_point_statistics(result: BundleResult, true_points, indices) -> CheckP
     pred = None if result.points_std is None else np.sqrt(np.mean(result.points_std[idx] ** 2, axis=0))
     return CheckPointStatistics(n=idx.size, mean=err.mean(axis=0), rms=np.sqrt(np.mean(err ** 2, axis=0)),
                                 max_abs=np.abs(err).max(axis=0), predicted=pred)
+
+
+# =================================================================================================
+# §11.6 geometric conditions of terrestrial surveys added to the bundle
+# =================================================================================================
+# What each condition of photolib.terrestrial.condition_equations ties, in the order of its point
+# arrays: "point" = an object point (index into the points), "image" = the projection centre of an
+# image (index into the images); whether it has a measured value; how many equations it gives.
+_CONDITION_ITEMS = {"distance": ("point", "point"), "base": ("image", "image"),
+                    "centre_distance": ("point", "image"), "vertical": ("point", "point"),
+                    "horizontal": ("point", "point"), "coplanar": ("point", "point", "point", "point")}
+_CONDITION_MEASURED = {"distance", "base", "centre_distance"}
+# The similarity subgroup under which each condition F = 0 stays satisfied — the datum parameters
+# it cannot fix (columns t_X, t_Y, t_Z, r_X, r_Y, r_Z, s of the datum rows): lengths are invariant
+# under shifts and rotations; a vertical line or a horizontal pair under shifts, the rotation about
+# the vertical and the scale; four coplanar points under every similarity.
+_CONDITION_FIXES = {"distance": (6,), "base": (6,), "centre_distance": (6,), "vertical": (3, 4),
+                    "horizontal": (3, 4), "coplanar": ()}
+
+
+@dataclass(frozen=True)
+class _Condition:
+    """One validated condition of §11.6 (from :func:`_parse_conditions`)."""
+
+    kind: str
+    items: tuple          # ("point" | "image", index) per point array of condition_equations
+    measured: float | None
+    sigma: float
+    rows: int             # equations it gives (2 for a vertical line)
+
+
+def _parse_conditions(conditions, n, k):
+    """Validate ``conditions`` of :func:`bundle_adjustment`: a list of (kind, indices, measured, σ).
+
+    Returns a tuple of :class:`_Condition` (empty for None). Raises :class:`InputError` naming the
+    condition and the problem.
+    """
+    if conditions is None:
+        return ()
+    if isinstance(conditions, (str, bytes)) or not isinstance(conditions, (list, tuple)):
+        raise InputError("conditions: give a list of (kind, indices, measured, sigma) tuples")
+    out = []
+    for c, spec in enumerate(conditions):
+        where = f"conditions[{c}]"
+        if isinstance(spec, (str, bytes)) or not isinstance(spec, (list, tuple)) or len(spec) != 4:
+            raise InputError(f"{where}: expected (kind, indices, measured, sigma), got {spec!r}")
+        kind, indices, measured, sigma = spec
+        if not isinstance(kind, str) or kind not in _CONDITION_ITEMS:
+            raise InputError(f"{where}: unknown condition {kind!r}; use one of {tuple(_CONDITION_ITEMS)}")
+        items = _CONDITION_ITEMS[kind]
+        try:
+            idx = np.asarray(indices).reshape(-1)
+        except (TypeError, ValueError):
+            idx = np.zeros(0)
+        if idx.size != len(items) or not (np.issubdtype(idx.dtype, np.integer) or
+                                          (np.issubdtype(idx.dtype, np.floating) and np.all(np.isfinite(idx))
+                                           and np.all(idx == np.round(idx)))):
+            raise InputError(f"{where}: the {kind!r} condition needs {len(items)} integer indices "
+                             f"({', '.join(items)}), got {indices!r}")
+        idx = idx.astype(np.int64)
+        for what, i in zip(items, idx):
+            size = n if what == "image" else k
+            if not 0 <= i < size:
+                raise InputError(f"{where}: {what} index {int(i)} is outside 0…{size - 1}")
+        pairs = list(zip(items, idx.tolist()))
+        if len(set(pairs)) < len(pairs):
+            raise InputError(f"{where}: the {kind!r} condition names the same {pairs[0][0]} twice")
+        if kind in _CONDITION_MEASURED:
+            try:
+                value = float(measured)
+            except (TypeError, ValueError):
+                value = float("nan")
+            if not (np.isfinite(value) and value > 0):
+                raise InputError(f"{where}: the {kind!r} condition needs a finite positive measured length, "
+                                 f"got {measured!r}")
+        elif measured is not None:
+            raise InputError(f"{where}: the {kind!r} condition takes no measured value (give None)")
+        else:
+            value = None
+        try:
+            s = float(sigma)
+        except (TypeError, ValueError):
+            s = float("nan")
+        if not (np.isfinite(s) and s > 0):
+            raise InputError(f"{where}: sigma must be a finite positive number (units of the condition), "
+                             f"got {sigma!r}")
+        out.append(_Condition(kind, tuple((w, int(i)) for w, i in pairs), value, s, 2 if kind == "vertical" else 1))
+    return tuple(out)
+
+
+def _condition_terms(conditions, cams, pts):
+    """F and ∂F/∂(coordinates) of every condition at the given centres and points, grouped by kind.
+
+    The values come from :func:`photolib.terrestrial.condition_equations` (its sympy Jacobians).
+    Returns a list of (condition positions, F (c, q), J (c, q, 3·items)) per kind.
+    """
+    from .terrestrial import condition_equations
+    groups = {}
+    for c, cond in enumerate(conditions):
+        groups.setdefault(cond.kind, []).append(c)
+    out = []
+    for kind, members in groups.items():
+        coords = [np.array([(cams[i, :3] if w == "image" else pts[i]) for w, i in
+                            (conditions[c].items[s] for c in members)]) for s in range(len(_CONDITION_ITEMS[kind]))]
+        measured = [conditions[c].measured for c in members] if kind in _CONDITION_MEASURED else None
+        F, J = condition_equations(kind, coords, measured)
+        out.append((members, F, J))
+    return out
+
+
+def _condition_datum_rows(conditions, cams, pts, centre, scale):
+    """Rows (r, 7) of the datum parameters the conditions fix, for :func:`_datum_rank`.
+
+    Each condition row is ∂F/∂(coordinates)·dX/d(t, r, s) at the start values, normalised by
+    |∂F/∂X|. The columns of the similarities that leave the condition satisfied
+    (``_CONDITION_FIXES``) are zeroed: at start values that do not meet the condition they would
+    show a spurious, tiny datum information (a vertical line that is not yet vertical "fixes"
+    the scale).
+    """
+    rows = []
+    for members, _, J in _condition_terms(conditions, cams, pts):
+        for c, Jc in zip(members, J):
+            cond = conditions[c]
+            X = np.array([(cams[i, :3] if w == "image" else pts[i]) for w, i in cond.items])
+            D = _similarity_rows((X - centre) / scale).reshape(-1, 7)             # (3·items, 7)
+            R = Jc @ D
+            R /= np.maximum(np.linalg.norm(Jc, axis=1, keepdims=True), 1e-300)
+            mask = np.zeros(7, bool)
+            mask[list(_CONDITION_FIXES[cond.kind])] = True
+            rows.append(np.where(mask, R, 0.0))
+    return np.vstack(rows) if rows else np.zeros((0, 7))
+
+
+@dataclass
+class _DenseResult:
+    """The parts of an adjustment solved by :func:`_dense_block_adjustment`, shaped as the block path's."""
+
+    frames: np.ndarray
+    points: np.ndarray
+    globals: np.ndarray
+    mu: float
+    dof: int
+    residuals: np.ndarray            # (m, 2) image observations
+    frame_residuals: np.ndarray      # (n, 6)
+    point_residuals: np.ndarray      # (k, 3)
+    condition_residuals: np.ndarray  # one per condition equation
+    frames_std: np.ndarray
+    points_std: np.ndarray
+    globals_std: np.ndarray
+    Q1: np.ndarray
+    Q2: np.ndarray
+    Q3: np.ndarray
+    Q13: np.ndarray
+    Q23: np.ndarray
+    iterations: int
+    history: list
+
+
+def _dense_block_adjustment(b: _Block, linearize, globals0, global_obs, conditions, sigma_image, tols, max_iter,
+                            progress=None, global_names=()) -> _DenseResult:
+    """A bundle block with the geometric conditions of §11.6, solved by the dense path of the one engine.
+
+    A condition couples the coordinates of several points (or centres), which the block solver's
+    elimination of each point by its own 3×3 block (3.5.16) cannot hold. So the correction
+    equations of the block (``linearize(frames, points, globals)``, the same ones the block
+    solver uses) are written out as one dense system (:func:`photolib.lsq.block_equations_dense`,
+    columns images | block-wide unknowns | free points), the direct observations of control, GNSS,
+    INS and prior calibration values appended as rows δ + l = v, and every condition as
+    ∂F/∂p·δ + F = v with weight (σ_image/σ)² — (11.6.7) for a distance — and the whole is iterated
+    by :func:`photolib.lsq.gauss_newton`. The dense normal matrix has 6n + g + 3k rows: meant for
+    terrestrial blocks of tens of images and hundreds of points.
+    """
+    n, k = b.n, b.k
+    g = 0 if globals0 is None else len(globals0)
+    free = b.free_points
+    col_of_point = np.cumsum(free) - 1
+    nf = 6 * n + g                                      # first point column
+    n_unknowns = nf + 3 * int(free.sum())
+
+    def point_columns(i):
+        return nf + 3 * col_of_point[i] + np.arange(3)
+
+    # the direct observations as rows: (column, value, weight)
+    prior_cols, prior_vals, prior_wts = [], [], []
+    if b.frame_obs is not None:
+        i, c = np.nonzero(b.frame_obs[1] > 0)
+        prior_cols.append(6 * i + c); prior_vals.append(b.frame_obs[0][i, c]); prior_wts.append(b.frame_obs[1][i, c])
+    if g and global_obs is not None:
+        (j,) = np.nonzero(global_obs[1] > 0)
+        prior_cols.append(6 * n + j); prior_vals.append(global_obs[0][j]); prior_wts.append(global_obs[1][j])
+    if b.point_obs is not None:
+        i, c = np.nonzero((b.point_obs[1] > 0) & free[:, None])
+        prior_cols.append(nf + 3 * col_of_point[i] + c); prior_vals.append(b.point_obs[0][i, c])
+        prior_wts.append(b.point_obs[1][i, c])
+    pcol = np.concatenate(prior_cols).astype(np.intp) if prior_cols else np.zeros(0, np.intp)
+    pval = np.concatenate(prior_vals) if prior_vals else np.zeros(0)
+    pwt = np.concatenate(prior_wts) if prior_wts else np.zeros(0)
+    # the condition rows, in the order of the conditions
+    first_row = np.concatenate([[0], np.cumsum([c.rows for c in conditions])]).astype(np.intp)
+    n_cond = int(first_row[-1])
+    cond_wt = np.concatenate([np.full(c.rows, (sigma_image / c.sigma) ** 2) for c in conditions]) \
+        if conditions else np.zeros(0)
+    m_img = 2 * b.image.size
+    weights = np.concatenate([np.ones(m_img), pwt, cond_wt])
+
+    def unpack(x):
+        frames = x[:6 * n].reshape(n, 6)
+        glob = x[6 * n:nf]
+        points = b.pts.copy()
+        points[free] = x[nf:].reshape(-1, 3)
+        return frames, points, glob
+
+    def dense(x):
+        frames, points, glob = unpack(x)
+        eq = linearize(frames, points, glob)
+        if g:
+            B0, L0, _ = global_block_equations_dense(eq, n, k, free)
+        else:
+            B0, L0, _ = block_equations_dense(eq, n, k, free)
+        B = np.zeros((m_img + pcol.size + n_cond, n_unknowns))
+        L = np.zeros(B.shape[0])
+        B[:m_img], L[:m_img] = B0, L0
+        r = m_img + np.arange(pcol.size)
+        B[r, pcol] = 1.0
+        L[r] = x[pcol] - pval
+        base = m_img + pcol.size
+        for members, F, J in _condition_terms(conditions, frames, points):
+            for c, Fc, Jc in zip(members, F, J):
+                rows = base + first_row[c] + np.arange(conditions[c].rows)
+                L[rows] = Fc
+                for s, (what, i) in enumerate(conditions[c].items):
+                    if what == "image":
+                        B[np.ix_(rows, 6 * i + np.arange(3))] = Jc[:, 3 * s:3 * s + 3]
+                    elif free[i]:
+                        B[np.ix_(rows, point_columns(i))] = Jc[:, 3 * s:3 * s + 3]
+        return B, L
+
+    x0 = np.concatenate([b.cams.ravel(), np.zeros(0) if not g else np.asarray(globals0, float),
+                         b.pts[free].ravel()])
+    tol = np.concatenate([np.tile(np.broadcast_to(tols[0], (6,)), n), np.broadcast_to(tols[2], (g,)),
+                          np.full(3 * int(free.sum()), float(tols[1]))])
+    names = [f"{nm}[{i}]" for i in range(n) for nm in EO_NAMES] + list(global_names) + \
+        [f"{c}[{i}]" for i in np.flatnonzero(free) for c in "XYZ"]
+    adj = gauss_newton(dense, x0, weights, tol=tol, max_iter=max_iter, names=names, progress=progress)
+    frames, points, glob = unpack(adj.x)
+    V = adj.residuals
+    frame_res, point_res = np.zeros((n, 6)), np.zeros((k, 3))
+    rv = V[m_img:m_img + pcol.size]
+    flat = np.zeros(n_unknowns)
+    flat[pcol] = rv
+    frame_res[:] = flat[:6 * n].reshape(n, 6)
+    point_res[free] = flat[nf:].reshape(-1, 3)
+    # cofactor blocks in the shapes of the block solver (for the m_j and the correlation report)
+    Q = adj.Q
+    Q1 = np.array([Q[6 * i:6 * i + 6, 6 * i:6 * i + 6] for i in range(n)])
+    Q2, Q23 = np.zeros((k, 3, 3)), np.zeros((k, 3, g))
+    for i in np.flatnonzero(free):
+        pc = point_columns(i)
+        Q2[i] = Q[np.ix_(pc, pc)]
+        Q23[i] = Q[pc, 6 * n:nf]
+    Q3 = Q[6 * n:nf, 6 * n:nf]
+    Q13 = Q[:6 * n, 6 * n:nf].reshape(n, 6, g)
+    mu = adj.mu
+    return _DenseResult(frames=frames, points=points, globals=glob, mu=mu, dof=adj.dof,
+                        residuals=V[:m_img].reshape(-1, 2), frame_residuals=frame_res, point_residuals=point_res,
+                        condition_residuals=V[m_img + pcol.size:].copy(),
+                        frames_std=mu * np.sqrt(np.einsum("kii->ki", Q1)),
+                        points_std=mu * np.sqrt(np.einsum("kii->ki", Q2)), globals_std=mu * np.sqrt(np.diag(Q3)),
+                        Q1=Q1, Q2=Q2, Q3=Q3, Q13=Q13, Q23=Q23, iterations=adj.iterations, history=adj.history)
 
 
 # =================================================================================================
@@ -1043,9 +1399,10 @@ class SelfCalibrationResult(BundleResult):
 def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: InteriorOrientation, *,
                                        calibrate=IO_NAMES, sigma_io=None, control=None, sigma_control=None,
                                        gnss=None, sigma_centre=0.05, ins=None, sigma_angles=np.radians(0.005),
-                                       sigma_image: float = 0.005, order: str = "kaw", max_iter: int = 30,
-                                       tol_centre: float = 1e-5, tol_angle: float = 1e-9, tol_point: float = 1e-5,
-                                       correlation_limit: float = 0.9, **legacy) -> SelfCalibrationResult:
+                                       conditions=None, sigma_image: float = 0.005, order: str = "kaw",
+                                       max_iter: int = 30, tol_centre: float = 1e-5, tol_angle: float = 1e-9,
+                                       tol_point: float = 1e-5, correlation_limit: float = 0.9,
+                                       **legacy) -> SelfCalibrationResult:
     """Bundle adjustment with self-calibration, §3.6: (3.6.1)–(3.6.3).
 
     The interior orientation f, x₀, y₀ and the distortion coefficients k₁, k₂, k₃, p₁, p₂ of
@@ -1065,6 +1422,9 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
         for the five polynomial coefficients the text counts.
     io_sigma : dict {name: σ}, optional
         Prior calibration values of ``io0`` as weighted observations with these accuracies.
+    conditions : list of (kind, indices, measured, sigma), optional
+        Geometric conditions of §11.6, as in :func:`bundle_adjustment` (the block is then solved
+        by the dense path of the engine, the block-wide unknowns as columns after the images).
     correlation_limit : float
         |r| above which :attr:`CorrelationReport.high` flags a pair.
 
@@ -1081,7 +1441,8 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
 
     References
     ----------
-    Chibunichev (2022), §3.6, eqs. (3.6.1)–(3.6.3); §3.5, eqs. (3.5.9)–(3.5.16).
+    Chibunichev (2022), §3.6, eqs. (3.6.1)–(3.6.3); §3.5, eqs. (3.5.9)–(3.5.16); conditions: §11.6,
+    eqs. (11.6.1)–(11.6.7).
 
     Examples
     --------
@@ -1106,7 +1467,7 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
     if not 0 < correlation_limit < 1:
         raise InputError("correlation_limit must lie in (0, 1)")
     b = _prepare_block(observations, cameras0, points0, io0, control, sigma_control, gnss, sigma_centre, ins,
-                       sigma_angles, sigma_image, order, correct_distortion_first=False)
+                       sigma_angles, sigma_image, order, correct_distortion_first=False, conditions=conditions)
     full = _io_vector(io0)
     cols = [IO_NAMES.index(nm) for nm in names]
     g0 = full[cols]
@@ -1130,11 +1491,16 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
     tol_g = np.array([1e-7 if nm in ("f", "x0", "y0") else 1e-6 * (0.1 ** (2 * (IO_NAMES.index(nm) - 2)))
                       if nm.startswith("k") else 1e-10 for nm in names])
     try:
-        adj = block_gauss_newton(linearize, b.cams, b.pts, g0, frame_observations=b.frame_obs,
-                                        point_observations=b.point_obs, global_observations=gobs,
-                                        free_points=b.free_points, tol_frames=[tol_centre] * 3 + [tol_angle] * 3,
-                                        tol_points=tol_point, tol_globals=tol_g, max_iter=max_iter, covariance=True,
-                                        global_names=names, frame_names=EO_NAMES)
+        if b.conditions:
+            adj = _dense_block_adjustment(b, linearize, g0, gobs, b.conditions, sigma_image,
+                                          ([tol_centre] * 3 + [tol_angle] * 3, tol_point, tol_g), max_iter,
+                                          global_names=names)
+        else:
+            adj = block_gauss_newton(linearize, b.cams, b.pts, g0, frame_observations=b.frame_obs,
+                                     point_observations=b.point_obs, global_observations=gobs,
+                                     free_points=b.free_points, tol_frames=[tol_centre] * 3 + [tol_angle] * 3,
+                                     tol_points=tol_point, tol_globals=tol_g, max_iter=max_iter, covariance=True,
+                                     global_names=names, frame_names=EO_NAMES)
     except PointBehindCameraError as exc:
         raise ConvergenceError(f"the iteration diverged: {exc}") from exc
     v = full.copy()
@@ -1149,7 +1515,8 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
         control_residuals=adj.point_residuals if b.point_obs is not None else np.zeros((k, 3)),
         gnss_residuals=fr[:, :3] if gnss is not None else zeros3, ins_residuals=fr[:, 3:] if ins is not None else zeros3,
         iterations=adj.iterations, history=adj.history, order=order, io=io, calibrated=names,
-        io_std=dict(zip(names, adj.globals_std)), correlations=_correlation_report(adj, names, correlation_limit))
+        io_std=dict(zip(names, adj.globals_std)), correlations=_correlation_report(adj, names, correlation_limit),
+        condition_residuals=getattr(adj, "condition_residuals", np.zeros(0)))
 
 
 # --- §3.8 multi-camera rigs ----------------------------------------------------------------------

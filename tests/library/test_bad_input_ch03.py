@@ -1,9 +1,11 @@
-"""Bad-input catalogue, Chapter 3 (§3.2–§3.9): strip_triangulation, synthetic, triangulation_layouts."""
+"""Bad-input catalogue, Chapter 3 (§3.2–§3.9): strip_triangulation, synthetic, triangulation_layouts, and the
+geometric conditions of §11.6 added to the bundle (``bundle_adjustment(conditions=...)``)."""
 
 import numpy as np
 import pytest
 
 from catalogue import INF, NAN, Case, check_case
+from photolib import bundle as bd
 from photolib import strip_triangulation as st
 from photolib import synthetic as sy
 from photolib import triangulation_layouts as tl
@@ -18,6 +20,18 @@ _RES = type("R", (), {"points": _FB.points, "points_std": None, "mu": 0.005})()
 _TOL = {"3.7.2 tie height": 15, "3.7.6 control height": 0.15, "3.7.6 control plan": 0.2, "3.7.6 check plan": 0.3,
         "3.7.6 height, category a": 0.2, "3.7.6 limit share, open": 5, "3.7.6 limit factor": 2}
 _GEO = np.array([[0, 100, 5], [0, -100, 8], [1000, 0, 6], [2000, 100, 4], [2000, -100, 7.0]])
+# a noise-free block whose first image is known (GNSS + INS): the datum lacks only the scale
+_AB = sy.aerial_block(2, 4, points_per_image=15, sigma=0.0, seed=1)
+_AB0 = _AB.start_values(seed=2)
+_FIRST = np.arange(_AB.n_images)[:, None] == 0
+_KNOWN = dict(gnss=np.where(_FIRST, _AB.cameras[:, :3], NAN), ins=np.where(_FIRST, _AB.cameras[:, 3:], NAN),
+              sigma_centre=1e-4, sigma_angles=1e-7, order=_AB.order)
+_D01 = float(np.linalg.norm(_AB.points[0] - _AB.points[1]))
+
+
+def _cond(conditions, **extra):
+    """bundle_adjustment of the block above with the given §11.6 conditions."""
+    return bd.bundle_adjustment(_AB.observations, *_AB0, _AB.io, conditions=conditions, **_KNOWN, **extra)
 
 CASES = [
     # --- synthetic ---------------------------------------------------------------------------------
@@ -68,6 +82,45 @@ CASES = [
     Case(sy.rolling_shutter_block, (), dict(readout=NAN), raises=InputError, why="NaN readout"),
     Case(sy.corridor_strip, (1,), raises=InputError, why="one image"),
     Case(sy.corridor_strip, (), dict(gnss_sigma=-1.0), raises=InputError, why="negative GNSS σ"),
+    # --- bundle with the conditions of §11.6 -------------------------------------------------------
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io), dict(conditions=[("slope", (0, 1), None, 0.1)],
+                                                                       **_KNOWN),
+         raises=InputError, match="unknown condition", why="unknown condition kind"),
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io),
+         dict(conditions=[("distance", (0, len(_AB.points)), 5.0, 0.01)], **_KNOWN), raises=InputError,
+         match="outside", why="condition point index out of range"),
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io),
+         dict(conditions=[("base", (0, _AB.n_images), 5.0, 0.01)], **_KNOWN), raises=InputError, match="outside",
+         why="condition image index out of range"),
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io),
+         dict(conditions=[("distance", (0, 1), NAN, 0.01)], **_KNOWN), raises=InputError, match="measured",
+         why="NaN measured distance"),
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io),
+         dict(conditions=[("distance", (0, 1), None, 0.01)], **_KNOWN), raises=InputError, match="measured",
+         why="distance without a measured value"),
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io),
+         dict(conditions=[("vertical", (0, 1), 3.0, 0.01)], **_KNOWN), raises=InputError, match="no measured",
+         why="a measured value for a vertical line"),
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io),
+         dict(conditions=[("horizontal", (0, 1), None, -1.0)], **_KNOWN), raises=InputError, match="sigma",
+         why="negative condition σ"),
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io),
+         dict(conditions=[("coplanar", (0, 1, 2), None, 0.01)], **_KNOWN), raises=InputError, match="4 integer",
+         why="three points for the plane condition"),
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io),
+         dict(conditions=[("vertical", (2, 2), None, 0.01)], **_KNOWN), raises=InputError, match="twice",
+         why="the same point twice"),
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io), dict(conditions="distance", **_KNOWN),
+         raises=InputError, match="list", why="conditions not a list"),
+    Case(bd.bundle_adjustment, (_AB.observations, *_AB0, _AB.io),
+         dict(conditions=[("vertical", (0, 1), None, 0.01)], **_KNOWN), raises=DegenerateGeometryError,
+         match="6 of the 7", why="a vertical line gives no scale: datum defect"),
+    Case(_cond, ([("distance", (0, 1), _D01, 0.001)],), raises=None,
+         check=lambda r: float(np.abs(r.points - _AB.points).max()) < 1e-4,
+         why="a measured distance completes the datum (the scale)"),
+    Case(bd.self_calibrating_bundle_adjustment, (_AB.observations, *_AB0, _AB.io),
+         dict(conditions=[("distance", (0, 1), INF, 0.01)], calibrate=("f",), **_KNOWN), raises=InputError,
+         match="measured", why="inf measured distance (self-calibration)"),
     # --- strip_triangulation -----------------------------------------------------------------------
     Case(st.centre_id, ("x",), raises=InputError, why="not an image number"),
     Case(st.UnitModel, ("M", [1, 1], np.zeros((2, 3))), raises=InputError, why="duplicate ids"),
