@@ -95,3 +95,51 @@ def test_adapters_accept_the_derivation_and_reject_a_broken_form(adapter, good, 
     from photolib.book import ch11_calibration as c
     assert getattr(c, adapter)(good)["printed_equals_derived"]
     assert not getattr(c, adapter)(bad)["printed_equals_derived"]
+
+
+# --- Table 11.3: the trend on simulation (not the book's numbers) ------------------------------------
+def test_long_focus_simulation_common_centre_narrows_f_and_the_depth_error():
+    """photolib.book.ch11_calibration.long_focus_run: in every seeded run the common centre gives the
+    smaller σ_f (11.3.6) — a property of the geometry — and each calibration's true f error lies within
+    4 of its own σ_f (honest accuracy); pooled over the runs the depth error m_Z shrinks."""
+    from photolib.book import ch11_calibration as c
+    runs = [c.long_focus_run(seed) for seed in range(4)]
+    for r in runs:
+        assert r["common_centre"]["sigma_f"] < r["classical"]["sigma_f"]
+        for label in ("classical", "common_centre"):
+            assert abs(r[label]["f_error"]) < 4 * r[label]["sigma_f"], (label, r[label])
+    mz = {label: np.sqrt(np.mean([r[label]["rms"][2] ** 2 for r in runs])) for label in ("classical", "common_centre")}
+    assert mz["common_centre"] < mz["classical"]
+
+
+def test_long_focus_trend_table_shows_the_book_values_beside_the_simulation():
+    from photolib.book import ch11_calibration as c
+    table, numbers = c.long_focus_trend(n_runs=2)
+    book = {q.name: q.printed for q in CH.example("11.3-table-11.3").quantities}
+    assert [row[:3] for row in table.rows[:3]] == [[f"m_{k}", book[f"m{k}_classical"], book[f"m{k}_common_centre"]]
+                                                   for k in "XYZ"]
+    assert set(numbers) == {"classical", "common_centre"}
+
+
+# --- the chessboard method on real images: photolib's calibration against OpenCV's -------------------
+def test_real_chessboard_calibration_agrees_with_opencv_on_the_same_corners():
+    """OpenCV's sample left*.jpg (13 views), photolib's corners: photolib.calibration.calibrate_chessboard
+    against cv2.calibrateCamera on the same corners. The models differ (OpenCV distorts ideal
+    coordinates and has f_x ≠ f_y), so f agrees to 0.2 % (benchmarks/calibration_chessboard.py), the
+    principal point to 0.5 px and the r.m.s. reprojection error to 10 %."""
+    cv2 = pytest.importorskip("cv2")
+    from photolib import calibration as cal
+    from photolib import datasets
+    try:
+        folder = datasets.data_path("calibration", "opencv_chessboard")
+    except datasets.DataUnavailableError:
+        pytest.skip("real data absent")
+    paths = sorted(folder.glob("left*.jpg"))
+    corners = [np.asarray(cal.find_chessboard(datasets.read_image(p), (9, 6), name=p.name), float) for p in paths]
+    ours = cal.calibrate_chessboard(corners, (9, 6), 25.0, (480, 640))
+    obj = np.array([(j * 25.0, i * 25.0, 0) for i in range(6) for j in range(9)], np.float32)
+    rms, K, *_ = cv2.calibrateCamera([obj] * len(corners), [c.astype(np.float32).reshape(-1, 1, 2) for c in corners],
+                                     (640, 480), None, None)
+    assert ours.io.f == pytest.approx((K[0, 0] + K[1, 1]) / 2, rel=2e-3)
+    assert abs(ours.io.x0 + 319.5 - K[0, 2]) < 0.5 and abs(239.5 - ours.io.y0 - K[1, 2]) < 0.5
+    assert 0.9 * rms < ours.rms < 1.1 * rms
