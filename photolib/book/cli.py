@@ -12,6 +12,10 @@
   status table and the notes, diagnoses and reasons.
 * ``photolib errata [--chapter N] [--json]`` lists the errors found in the book, with the correct
   value and the diagnosis.
+* ``photolib assignment ID --seed N [--out DIR]`` writes a student sheet for a worked example
+  (its inputs regenerated from a new seeded truth with the book's rounding, as Markdown and as a
+  notebook) and a separate answer key with the tolerance of each answer;
+  ``photolib check ID --seed N answers.toml [--strict]`` grades a student's answers against it.
 * ``photolib --version``.
 
 Exit codes: 0 when every entry still has its recorded status; 1 when some entry no longer does
@@ -27,6 +31,7 @@ import sys
 import textwrap
 
 from .. import __version__
+from .assignment_cli import RUNNERS as _ASSIGNMENT_RUNNERS, add_assignment_commands
 from .textbook import STATUSES, available_chapters, load_chapter
 from .verify import check_example, check_formula, default_jobs, example_table, summary, verify
 
@@ -274,6 +279,7 @@ def build_parser() -> argparse.ArgumentParser:
     p_errata = sub.add_parser("errata", help="list the errors found in the book")
     chapter_option(p_errata)
     p_errata.add_argument("--json", action="store_true", help="print the errata as JSON")
+    add_assignment_commands(sub)
     return parser
 
 
@@ -281,7 +287,8 @@ def main(argv=None, out=None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     out = out or sys.stdout
-    run = {"verify": _run_verify, "list": _run_list, "show": _run_show, "errata": _run_errata}[args.command]
+    run = {"verify": _run_verify, "list": _run_list, "show": _run_show, "errata": _run_errata,
+           **_ASSIGNMENT_RUNNERS}[args.command]
     try:
         return run(args, out)
     except BrokenPipeError:              # e.g. `photolib verify | head`: the reader stopped reading
