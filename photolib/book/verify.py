@@ -21,6 +21,7 @@ import importlib
 import math
 import multiprocessing
 import os
+import re
 from dataclasses import dataclass
 
 from .textbook import Example, Formula, available_chapters, load_chapter
@@ -262,8 +263,33 @@ def summary(rows) -> dict:
     return counts
 
 
+# Colours of the statuses in the notebooks' tables (and the legend under each result table).
+STATUS_COLOURS = {
+    "reproduced": "#1a7f37",          # green: the book's number comes out
+    "input-rounding": "#0969da",      # blue: differs only by the book's rounding of its inputs
+    "erratum": "#bc4c00",             # orange: the book is wrong; the correct value is shown
+    "not-reproducible": "#6e7781",    # grey: the book does not print the data
+    "transcribed": "#8250df",         # purple: data, nothing to compute
+    "CHANGED": "#cf222e",             # red: the recorded status no longer holds
+}
+_NUMBER_CELL = re.compile(r"^[−+-]?\d[\d\s]*(?:[.,](\d+))?(?:[eE][−+-]?\d+)?$")
+
+
+def _decimal_parts(text: str):
+    """(integer part, fraction digits) of a number cell, or None for text."""
+    m = _NUMBER_CELL.match(text.strip())
+    if not m:
+        return None
+    return len(m.group(1) or "")
+
+
 class Table:
-    """A small table that prints as text (and as HTML in Jupyter)."""
+    """A small table that prints as text (and as a styled HTML table in Jupyter).
+
+    In HTML, cells are padded, numbers are right-aligned on their decimal point (decimal comma
+    of the book or decimal point of photolib alike), and statuses are coloured, with a legend
+    when the table shows statuses.
+    """
 
     def __init__(self, header, rows, title=""):
         self.header, self.rows, self.title = list(header), [list(map(str, r)) for r in rows], title
@@ -275,12 +301,65 @@ class Table:
         out = ([self.title] if self.title else []) + [line(self.header), line(["-" * w for w in widths])]
         return "\n".join(out + [line(r) for r in self.rows])
 
+    def _numeric_columns(self):
+        """{column: the most fraction digits} for columns whose non-empty cells are all numbers."""
+        columns = {}
+        for i in range(len(self.header)):
+            cells = [r[i] for r in self.rows if i < len(r) and r[i].strip() not in ("", "—")]
+            parts = [_decimal_parts(c) for c in cells]
+            if cells and all(p is not None for p in parts):
+                columns[i] = max(parts)
+        return columns
+
     def _repr_html_(self):
         import html
-        head = "".join(f"<th>{html.escape(h)}</th>" for h in self.header)
-        body = "".join("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in r) + "</tr>" for r in self.rows)
-        caption = f"<caption>{html.escape(self.title)}</caption>" if self.title else ""
-        return f"<table>{caption}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+        numeric = self._numeric_columns()
+        pad = "padding:0.2em 0.7em;border-bottom:1px solid #d0d7de;"
+        head = "".join(f'<th style="{pad}text-align:{"right" if i in numeric else "left"}">{html.escape(h)}</th>'
+                       for i, h in enumerate(self.header))
+        statuses = set()
+        body = []
+        for r in self.rows:
+            cells = []
+            for i, c in enumerate(r):
+                style = pad
+                text = html.escape(c)
+                if i in numeric and c.strip() not in ("", "—"):
+                    missing = numeric[i] - _decimal_parts(c)
+                    if _decimal_parts(c) == 0 and numeric[i] and not re.search(r"[.,]", c):
+                        filler = "\u2008" + "\u2007" * numeric[i]        # punctuation space + figure spaces
+                    else:
+                        filler = "\u2007" * missing
+                    text += filler
+                    style += "text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap;"
+                elif i in numeric:
+                    style += "text-align:right;"
+                word = c.split(" ")[0]
+                if word in STATUS_COLOURS:
+                    statuses.add(word)
+                    style += f"color:{STATUS_COLOURS[word]};font-weight:600;"
+                cells.append(f'<td style="{style}">{text}</td>')
+            body.append("<tr>" + "".join(cells) + "</tr>")
+        caption = (f'<caption style="caption-side:top;text-align:left;font-weight:600;padding:0.3em 0">'
+                   f"{html.escape(self.title)}</caption>") if self.title else ""
+        legend = ""
+        if statuses:
+            keys = [s for s in STATUS_COLOURS if s in statuses]
+            legend = ('<div style="font-size:0.85em;margin-top:0.3em">' + " · ".join(
+                f'<span style="color:{STATUS_COLOURS[k]};font-weight:600">{html.escape(k)}</span>'
+                f"{html.escape(': ' + _LEGEND[k])}" for k in keys) + "</div>")
+        return (f'<div style="overflow-x:auto"><table style="border-collapse:collapse;margin:0.5em 0">{caption}'
+                f"<thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>{legend}</div>")
+
+
+_LEGEND = {
+    "reproduced": "the book's number comes out",
+    "input-rounding": "differs only through the book's rounding of its inputs",
+    "erratum": "the book is wrong (correct value given)",
+    "not-reproducible": "the book does not print the data",
+    "transcribed": "data, nothing to compute",
+    "CHANGED": "the recorded status no longer holds",
+}
 
 
 def example_table(chapter: int, example_id: str) -> Table:
@@ -288,10 +367,12 @@ def example_table(chapter: int, example_id: str) -> Table:
     example = load_chapter(chapter).example(example_id)
     rows = check_example(example)
     with_printed = any(r.as_printed for r in rows)
-    header = ["quantity", "book", "computed"] + (["as printed"] if with_printed else []) + ["status", "check"]
+    with_units = any(q.unit for q in example.quantities)
+    header = (["quantity", "book", "computed"] + (["unit"] if with_units else [])
+              + (["as printed"] if with_printed else []) + ["status", "check"])
     body = []
     for r, q in zip(rows, example.quantities):
-        unit = f" {q.unit}" if q.unit else ""
-        cells = [r.quantity, r.book, r.computed + unit] + ([r.as_printed] if with_printed else [])
+        cells = [r.quantity, r.book, r.computed] + ([q.unit] if with_units else [])
+        cells += [r.as_printed] if with_printed else []
         body.append(cells + [r.status + (f" ({r.detail})" if r.detail else ""), "ok" if r.ok else "CHANGED"])
     return Table(header, body, f"§{example.section} {example.title}")
