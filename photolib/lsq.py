@@ -51,7 +51,7 @@ __all__ = ["Adjustment", "AdjustmentView", "IterationRecord", "BlockCorrectionEq
            "GlobalBlockCorrectionEquations", "BlockSolution", "gauss_newton", "block_gauss_newton",
            "solve_normal_equations", "solve_block_normal_equations", "solve_partitioned_normal_equations",
            "accuracy", "redundancy_numbers", "point_weights", "block_equations_dense",
-           "global_block_equations_dense"]
+           "global_block_equations_dense", "blas_on_one_thread"]
 
 _REF_18 = "Chibunichev (2022), §1.8, eqs. (1.8.5)–(1.8.10)"
 
@@ -1001,8 +1001,12 @@ def _band_ordering(S):
 
 
 @contextlib.contextmanager
-def _blas_on_one_thread():
+def blas_on_one_thread():
     """A context in which BLAS and LAPACK run on one thread (threadpoolctl, a runtime dependency).
+
+    For least-squares problems of a few hundred unknowns solved many times (Monte Carlo runs,
+    RPC fitting, the factorisation below): a multithreaded BLAS gains nothing at that size, and
+    on a machine whose cores are busy its threads wait for each other.
 
     The band Cholesky of :class:`_Factorisation` works on panels a few hundred unknowns wide: a
     multithreaded BLAS gains nothing there, and when other processes hold the cores its threads
@@ -1010,6 +1014,27 @@ def _blas_on_one_thread():
     (benchmarks/README.md; at 100 images 0.24 s on two threads against 0.002 s on one). The
     switch sets the thread count of every BLAS library threadpoolctl found (once) and restores
     it on exit — what ``ThreadpoolController.limit`` does, at a few microseconds instead of ≈ 17.
+
+    Returns
+    -------
+    context manager
+        Use in a ``with`` statement; the thread counts are restored when it ends.
+
+    Raises
+    ------
+    Nothing of its own; an error inside the ``with`` block propagates after the restore.
+
+    References
+    ----------
+    benchmarks/README.md, "Bundle adjustment" (the timings behind the one-thread rule).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> with blas_on_one_thread():
+    ...     x = np.linalg.solve(np.eye(3) * 2.0, np.ones(3))
+    >>> x.tolist()
+    [0.5, 0.5, 0.5]
     """
     libraries = _blas_libraries()
     before = [lib.num_threads for lib in libraries]
@@ -1094,7 +1119,7 @@ class _Factorisation:
         n = band.shape[1]
         self.n, self.order, self.scale, self.dense = n, order, scale, dense
         # one BLAS thread for every system larger than _ONE_THREAD_FROM stored numbers
-        with _blas_on_one_thread() if (n * n if dense else band.size) > _ONE_THREAD_FROM else contextlib.nullcontext():
+        with blas_on_one_thread() if (n * n if dense else band.size) > _ONE_THREAD_FROM else contextlib.nullcontext():
             if dense:            # the same numbers as a full lower triangle (row i − j, column j → i, j)
                 full = np.zeros((n, n), order="F")
                 ii, jj = np.tril_indices(n)

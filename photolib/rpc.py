@@ -774,8 +774,8 @@ def _normaliser(values, name):
 
 def _solve_ratio(u, T, keep, rcond, refine):
     """Linearised least squares of u = (T·a)/(T·b), b₀ = 1, over the kept terms; returns a, b, rank, cond."""
-    from .lsq import _blas_on_one_thread      # a multithreaded BLAS crawls on a shared machine
-    with _blas_on_one_thread():
+    from .lsq import blas_on_one_thread      # a multithreaded BLAS crawls on a shared machine
+    with blas_on_one_thread():
         return _solve_ratio_serial(u, T, keep, rcond, refine)
 
 

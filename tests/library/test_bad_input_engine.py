@@ -104,6 +104,8 @@ def truth_cameras(res):
 
 CASES = [
     # --- lsq: the dense engine ----------------------------------------------------------------------
+    Case(lsq.blas_on_one_thread, (), raises=None, check=lambda ctx: hasattr(ctx, "__enter__"),
+         why="takes no input: a context manager"),
     Case(lsq.gauss_newton, (line, [NAN, 0.0]), raises=InputError, match="NaN", why="NaN start"),
     Case(lsq.gauss_newton, (line, [[0.0, 0.0]]), raises=InputError, why="2-D start"),
     Case(lsq.gauss_newton, (line, ["a", 0.0]), raises=InputError, why="string start"),
