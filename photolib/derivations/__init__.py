@@ -39,6 +39,10 @@ Modules, by topic:
 * :mod:`~photolib.derivations.registration` — the rigid transform without scale (9.5.1).
 * :mod:`~photolib.derivations.terrestrial` — condition equations, polar collinearity and the
   normal case of terrestrial pairs, Chapter 11, §11.6–§11.8.
+* :mod:`~photolib.derivations.planar_target` — Sementsov's planar-target theory (6)–(18) and the
+  additional-parameter models (2)–(4), appendix to Chapter 11.
+* :mod:`~photolib.derivations.mockup` — collinearity with f, x₀, y₀ unknown and the tripod-head
+  centres (20) of Sementsov's mock-up calibrations, appendix to Chapter 11.
 
 Every public name of these modules is available here: ``from photolib import derivations;
 derivations.collinearity_model("kaw")``.
@@ -51,8 +55,8 @@ Examples
 """
 
 from . import (bundle, collinearity, coplanarity, distortion, georef, gnss, intersection, lidar, matching,
-               model, orthophoto, projective, quaternion, radar, registration, rotation, scanner, shapes,
-               similarity, symbols, terrestrial)
+               mockup, model, orthophoto, planar_target, projective, quaternion, radar, registration, rotation,
+               scanner, shapes, similarity, symbols, terrestrial)
 from .bundle import *  # noqa: F401,F403
 from .collinearity import *  # noqa: F401,F403
 from .coplanarity import *  # noqa: F401,F403
@@ -63,8 +67,10 @@ from .gnss import *  # noqa: F401,F403
 from .intersection import *  # noqa: F401,F403
 from .lidar import *  # noqa: F401,F403
 from .matching import *  # noqa: F401,F403
+from .mockup import *  # noqa: F401,F403
 from .model import *  # noqa: F401,F403
 from .orthophoto import *  # noqa: F401,F403
+from .planar_target import *  # noqa: F401,F403
 from .projective import *  # noqa: F401,F403
 from .quaternion import *  # noqa: F401,F403
 from .radar import *  # noqa: F401,F403
@@ -79,5 +85,5 @@ from .terrestrial import *  # noqa: F401,F403
 __all__ = [name for module in (symbols, model, rotation, quaternion, distortion, collinearity, intersection,
                                coplanarity, similarity, bundle, projective, gnss, matching, orthophoto,
                                scanner, radar, georef, shapes, lidar, registration,
-                               terrestrial)
+                               terrestrial, planar_target, mockup)
            for name in module.__all__]

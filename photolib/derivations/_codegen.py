@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import sympy as sp
 
-from . import bundle, collinearity, coplanarity, distortion, gnss, intersection, projective, similarity
+from . import bundle, collinearity, coplanarity, distortion, gnss, intersection, mockup, projective, similarity
 from .model import _model_key
 
 __all__: list = []
@@ -35,6 +35,7 @@ def _models():
     out += [(f"self_calibration_{o}", bundle.self_calibration_model(o)) for o in ORDERS]
     out += [("gnss_coplanarity", gnss.gnss_coplanarity_model()), ("gnss_collinearity", gnss.gnss_collinearity_model()),
             ("homography", projective.homography_model())]
+    out += [("mockup_collinearity", mockup.mockup_collinearity_model()), ("mockup_tripod", mockup.mockup_tripod_model())]
     return out
 
 

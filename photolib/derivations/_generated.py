@@ -1910,6 +1910,166 @@ def homography_jacobian(h_1, h_2, h_3, h_4, h_5, h_6, h_7, h_8, x, y, x_t, y_t):
     return [x2, x3, x1, 0, 0, 0, -x*x5, -x5*y, 0, 0, 0, x2, x3, x1, -x*x6, -x6*y]
 
 
+def mockup_collinearity_residuals(f, x_0, y_0, X_S, Y_S, Z_S, alpha, omega, kappa, X, Y, Z, x, y):
+    x0 = sin(kappa)
+    x1 = Y - Y_S
+    x2 = cos(omega)
+    x3 = x1*x2
+    x4 = Z - Z_S
+    x5 = sin(alpha)
+    x6 = cos(kappa)
+    x7 = x5*x6
+    x8 = sin(omega)
+    x9 = cos(alpha)
+    x10 = x0*x9
+    x11 = X - X_S
+    x12 = x0*x5
+    x13 = f/(-x1*x8 - x11*x2*x5 + x2*x4*x9)
+    return [-x - x13*(x0*x3 + x11*(-x12*x8 + x6*x9) + x4*(x10*x8 + x7)) + x_0, -x13*(x11*(-x10 - x7*x8) + x3*x6 + x4*(-x12 + x6*x8*x9)) - y + y_0]
+
+
+def mockup_collinearity_jacobian(f, x_0, y_0, X_S, Y_S, Z_S, alpha, omega, kappa, X, Y, Z, x, y):
+    x0 = sin(omega)
+    x1 = Y - Y_S
+    x2 = x0*x1
+    x3 = X - X_S
+    x4 = sin(alpha)
+    x5 = cos(omega)
+    x6 = x4*x5
+    x7 = cos(alpha)
+    x8 = Z - Z_S
+    x9 = -x2 - x3*x6 + x5*x7*x8
+    x10 = x9**(-1.0)
+    x11 = sin(kappa)
+    x12 = x1*x5
+    x13 = x11*x12
+    x14 = cos(kappa)
+    x15 = x14*x4
+    x16 = x11*x7
+    x17 = x0*x16 + x15
+    x18 = x11*x4
+    x19 = x0*x18 - x14*x7
+    x20 = -x19
+    x21 = x13 + x17*x8 + x20*x3
+    x22 = f*x10
+    x23 = f/x9**2
+    x24 = x21*x23
+    x25 = x24*x6
+    x26 = x22*x5
+    x27 = x0*x24 + x11*x26
+    x28 = -x17
+    x29 = x5*x7
+    x30 = x24*x29
+    x31 = x29*x3 + x6*x8
+    x32 = x3*x5
+    x33 = -x0*x3*x4 + x0*x7*x8 + x12
+    x34 = -x0*x14*x7 + x18
+    x35 = -x34
+    x36 = x0*x15 + x16
+    x37 = -x36
+    x38 = x12*x14 + x3*x37 + x35*x8
+    x39 = x10*x38
+    x40 = x23*x38
+    x41 = x40*x6
+    x42 = x0*x40 + x14*x26
+    x43 = x29*x40
+    return [-x10*x21, 1, 0, -x19*x22 + x25, x27, -x22*x28 - x30, -x22*(x20*x8 + x28*x3) - x24*x31, -x22*(-x11*x2 + x11*x5*x7*x8 - x18*x32) - x24*x33, -f*x39, -x20*x22 - x25, -x27, -x17*x22 + x30, -x39, 0, 1, -x22*x36 + x41, x42, -x22*x34 - x43, -x22*(x3*x34 + x37*x8) - x31*x40, -x22*(-x14*x2 + x14*x5*x7*x8 - x15*x32) - x33*x40, -x22*(-x13 + x19*x3 + x28*x8), -x22*x37 - x41, -x42, -x22*x35 + x43]
+
+
+def mockup_tripod_residuals(f, x_0, y_0, S0_X, S0_Y, S0_Z, l_X, l_Y, l_Z, alpha, omega, kappa, X, Y, Z, x, y):
+    x0 = sin(omega)
+    x1 = sin(kappa)
+    x2 = cos(omega)
+    x3 = x1*x2
+    x4 = cos(kappa)
+    x5 = x2*x4
+    x6 = -S0_Y + Y - l_X*x3 - l_Y*x5 + l_Z*x0
+    x7 = sin(alpha)
+    x8 = x4*x7
+    x9 = cos(alpha)
+    x10 = x1*x9
+    x11 = x0*x10 + x8
+    x12 = x1*x7
+    x13 = x0*x4*x9 - x12
+    x14 = -S0_Z + Z - l_X*x11 - l_Y*x13 - l_Z*x2*x9
+    x15 = -x0*x12 + x4*x9
+    x16 = -x0*x8 - x10
+    x17 = -S0_X + X - l_X*x15 - l_Y*x16 + l_Z*x2*x7
+    x18 = f/(-x0*x6 + x14*x2*x9 - x17*x2*x7)
+    return [-x - x18*(x11*x14 + x15*x17 + x3*x6) + x_0, -x18*(x13*x14 + x16*x17 + x5*x6) - y + y_0]
+
+
+def mockup_tripod_jacobian(f, x_0, y_0, S0_X, S0_Y, S0_Z, l_X, l_Y, l_Z, alpha, omega, kappa, X, Y, Z, x, y):
+    x0 = sin(omega)
+    x1 = sin(kappa)
+    x2 = cos(omega)
+    x3 = x1*x2
+    x4 = cos(kappa)
+    x5 = x2*x4
+    x6 = -S0_Y + Y - l_X*x3 - l_Y*x5 + l_Z*x0
+    x7 = x0*x6
+    x8 = sin(alpha)
+    x9 = cos(alpha)
+    x10 = x1*x8
+    x11 = x0*x10 - x4*x9
+    x12 = -x11
+    x13 = x1*x9
+    x14 = x4*x8
+    x15 = x0*x14 + x13
+    x16 = -x15
+    x17 = l_X*x12 + l_Y*x16 - l_Z*x2*x8
+    x18 = -S0_X + X - x17
+    x19 = x2*x8
+    x20 = l_Z*x2
+    x21 = x20*x9
+    x22 = x0*x13 + x14
+    x23 = -x0*x4*x9 + x10
+    x24 = -x23
+    x25 = -S0_Z + Z - l_X*x22 - l_Y*x24 - x21
+    x26 = -x18*x19 + x2*x25*x9 - x7
+    x27 = x26**(-1.0)
+    x28 = x2*x6
+    x29 = x1*x28
+    x30 = x12*x18 + x22*x25 + x29
+    x31 = f*x27
+    x32 = f/x26**2
+    x33 = x30*x32
+    x34 = x19*x33
+    x35 = x0*x33 + x3*x31
+    x36 = -x22
+    x37 = x2*x9
+    x38 = x33*x37
+    x39 = x2**2
+    x40 = x0*x3
+    x41 = x11*x2*x8 - x36*x37 - x40
+    x42 = -x1*x39*x4
+    x43 = x0*x5
+    x44 = x15*x2*x8 - x23*x37 - x43
+    x45 = x0**2 + x39*x8**2 + x39*x9**2
+    x46 = -x17
+    x47 = -l_X*x36 - l_Y*x23 + x21
+    x48 = x18*x37 + x19*x25 + x19*x47 - x37*x46
+    x49 = l_X*x0*x1 + l_Y*x0*x4 + x20
+    x50 = l_X*x2
+    x51 = x4*x9
+    x52 = l_Y*x2
+    x53 = l_Z*x0*x9 - x13*x50 - x51*x52
+    x54 = -l_Z*x0*x8 + x10*x50 + x14*x52
+    x55 = x2*x25
+    x56 = x18*x2
+    x57 = -x0*x18*x8 + x0*x25*x9 + x0*x49 + x19*x54 + x28 - x37*x53
+    x58 = -l_X*x5 + l_Y*x1*x2
+    x59 = -l_X*x16 - l_Y*x11
+    x60 = -l_X*x24 - l_Y*x36
+    x61 = x0*x58 + x19*x59 - x37*x60
+    x62 = x16*x18 + x24*x25 + x28*x4
+    x63 = x32*x62
+    x64 = x19*x63
+    x65 = x0*x63 + x31*x5
+    x66 = x37*x63
+    return [-x27*x30, 1, 0, -x11*x31 + x34, x35, -x31*x36 - x38, -x31*(-x1**2*x39 + x11*x12 + x22*x36) - x33*x41, -x31*(x12*x15 + x22*x23 + x42) - x33*x44, -x31*(x12*x19 - x22*x37 + x40) - x33*x45, -x31*(x12*x25 + x12*x47 + x18*x36 + x22*x46) - x33*x48, -x31*(-x1*x7 - x10*x56 + x12*x54 + x13*x55 + x22*x53 + x3*x49) - x33*x57, -x31*(x12*x59 + x22*x60 + x3*x58 + x62) - x33*x61, -x12*x31 - x34, -x35, -x22*x31 + x38, -x27*x62, 0, 1, -x15*x31 + x64, x65, -x23*x31 - x66, -x31*(x11*x16 + x24*x36 + x42) - x41*x63, -x31*(x15*x16 + x23*x24 - x39*x4**2) - x44*x63, -x31*(x16*x19 - x24*x37 + x43) - x45*x63, -x31*(x16*x25 + x16*x47 + x18*x23 + x24*x46) - x48*x63, -x31*(-x14*x56 + x16*x54 + x24*x53 - x4*x7 + x49*x5 + x51*x55) - x57*x63, -x31*(x11*x18 + x16*x59 + x24*x60 + x25*x36 - x29 + x5*x58) - x61*x63, -x16*x31 - x64, -x65, -x24*x31 + x66]
+
+
 def printed_resection(X_S, Y_S, Z_S, omega, alpha, kappa, X, Y, Z, x, y, f, x_0, y_0):
     x0 = cos(omega)
     x1 = cos(alpha)
@@ -2221,6 +2381,8 @@ MODELS = {
     'af357f46fd1c7de46e923ed226f208fbfad034346ce1a4ddeabdff4dd7af2f57': (gnss_coplanarity_residuals, gnss_coplanarity_jacobian),  # gnss-coplanarity
     '48f7ed2c95380460e48c7815c0a84cefed4bd2eb05d7c9cfcea1aab1f7e01a92': (gnss_collinearity_residuals, gnss_collinearity_jacobian),  # gnss-collinearity
     'dc9fad50509633935a6b39f749a5006461b650c8eb6973752384aac5454819cb': (homography_residuals, homography_jacobian),  # homography
+    'af719d5cf5d28a051ff001e8b0f2dfe556b5ec3341c947ebc18878a3866c473a': (mockup_collinearity_residuals, mockup_collinearity_jacobian),  # mockup-collinearity
+    'c19a86b1169fe8f9f94aa20973511844cb025eab6677b6994368e0aad20c7b08': (mockup_tripod_residuals, mockup_tripod_jacobian),  # mockup-tripod
 }
 
 PRINTED = {
