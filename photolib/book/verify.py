@@ -334,6 +334,8 @@ class Table:
                     style += "text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap;"
                 elif i in numeric:
                     style += "text-align:right;"
+                elif len(c) <= 14:
+                    style += "white-space:nowrap;"          # short labels and line ranges stay on one line
                 word = c.split(" ")[0]
                 if word in STATUS_COLOURS:
                     statuses.add(word)
