@@ -68,7 +68,7 @@ __all__ = ["AssignmentError", "Generator", "Asked", "Sheet", "KeyEntry", "Answer
            "GENERATORS", "available", "make_sheet", "answer_key", "write_assignment", "grade", "read_answers",
            "answers_toml", "printed_decimals"]
 
-ASKED_STATUSES = ("reproduced", "input-rounding", "erratum")
+ASKED_STATUSES = ("reproduced", "input-rounding", "erratum", "transcription")
 MAX_ATTEMPTS = 50
 CONDITION_FACTOR = 3.0      # a new data set may be at most 3× as sensitive to input rounding as the book's …
 CONDITION_FLOOR = 10.0      # … or 10 half units, whichever is larger

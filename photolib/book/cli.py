@@ -10,8 +10,10 @@
 * ``photolib list [--chapter N]`` lists the worked examples, tables and formulas with their ids.
 * ``photolib show ID`` shows one of them: where it is in the book, its inputs, the book · computed ·
   status table and the notes, diagnoses and reasons.
-* ``photolib errata [--chapter N] [--json]`` lists the errors found in the book, with the correct
-  value and the diagnosis.
+* ``photolib errata [--chapter N] [--json]`` lists the errors found in the book (``erratum``) and
+  the numbers and formulas the OCR text of the source lost or garbled (``transcription``), cited by
+  printed page ("§1.8, p. ≈24") or source and §, with the correct value and the diagnosis (written
+  once for the entries of a § that share it); the OCR lines come last.
 * ``photolib assignment ID --seed N [--out DIR]`` writes a student sheet for a worked example
   (its inputs regenerated from a new seeded truth with the book's rounding, as Markdown and as a
   notebook) and a separate answer key with the tolerance of each answer;
@@ -233,23 +235,44 @@ def _run_show(args, out) -> int:
 
 # --- errata -------------------------------------------------------------------------------------------
 def _run_errata(args, out) -> int:
-    from .errata import errata
+    """The errata grouped as in the appendix: the printed page (or source and §) first, the kind
+    (erratum: an error of the book; transcription: lost or garbled in the OCR), the values, the
+    diagnosis once per group, and the OCR lines last."""
+    from .errata import errata, group_records
     records = errata(_chapters(args), recompute=False)
     if args.json:
         json.dump([r.as_dict() for r in records], out, ensure_ascii=False, indent=1, default=str)
         out.write("\n")
         return 0
-    for r in records:
-        where = f"ch {r.chapter} §{r.section} {r.id}"
-        source = f" (seed {r.seed}, lines {r.lines[0]}–{r.lines[-1]})" if r.lines else ""
-        if r.kind == "formula":
-            head = f"{where}: formula {r.item}{source}"
-        else:
-            unit = f" {r.unit}" if r.unit else ""
-            head = f"{where}: {r.item} printed {r.printed}{unit}, correct {r.correct}{unit}{source}"
-        out.write(textwrap.fill(head, WIDTH, subsequent_indent="  ") + "\n")
-        out.write(_wrap(r.diagnosis) + "\n")
-    out.write(f"\n{len(records)} errata\n")
+    chapter = None
+    for group in group_records(records):
+        first = group.first
+        if first.chapter != chapter:
+            chapter = first.chapter
+            out.write(f"\nChapter {chapter}. {load_chapter(chapter).title}\n")
+        item = group.label if first.kind == "quantity" else f"eq. {group.label}" if group.label.startswith("(") \
+            else group.label
+        head = f"{group.where}, {item} [{group.status}]"
+        if len(group.records) == 1:
+            unit = f" {first.unit}" if first.unit else ""
+            head += f": printed {first.printed}{'' if first.unit and first.unit in first.printed else unit}, " \
+                    f"correct {first.correct}{unit}"
+        out.write(textwrap.fill(head, WIDTH, initial_indent="  ", subsequent_indent="    ") + "\n")
+        if len(group.records) > 1:
+            for r, note in zip(group.records, group.notes):
+                unit = f" {r.unit}" if r.unit else ""
+                shown = r.printed if not unit or r.unit in r.printed else r.printed + unit
+                line = f"{r.item}: printed {shown}, correct {r.correct}{unit}" + (f" — {note}" if note else "")
+                out.write(textwrap.fill(" ".join(line.split()), WIDTH, initial_indent="    ",
+                                        subsequent_indent="      ") + "\n")
+        out.write(_wrap(group.common, "      ") + "\n")
+        lines = group.lines
+        span = "" if not lines else f", line {lines[0]}" if lines[0] == lines[1] else f", lines {lines[0]}–{lines[1]}"
+        out.write(_wrap(f"(seed {first.seed}{span}; {', '.join(dict.fromkeys(r.id for r in group.records))})",
+                        "      ") + "\n")
+    wrong = sum(r.status == "erratum" for r in records)
+    out.write(f"\n{wrong} errors of the book (erratum) and {len(records) - wrong} defects of the OCR transcription "
+              f"(transcription): {len(records)} errata\n")
     return 0
 
 
@@ -276,7 +299,7 @@ def build_parser() -> argparse.ArgumentParser:
     p_show.add_argument("id", help="the id, as `photolib list` prints it")
     chapter_option(p_show)
     p_show.add_argument("--wide", action="store_true", help="the inputs in full")
-    p_errata = sub.add_parser("errata", help="list the errors found in the book")
+    p_errata = sub.add_parser("errata", help="list the errors found in the book and the OCR transcription defects")
     chapter_option(p_errata)
     p_errata.add_argument("--json", action="store_true", help="print the errata as JSON")
     add_assignment_commands(sub)

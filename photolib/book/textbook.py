@@ -1,9 +1,14 @@
-"""The book's published numbers as data — reader of ``textbook/chNN.toml``.
+"""The book's published numbers as data — reader of ``textbook/chNN.toml`` and ``textbook/pages.toml``.
 
 One TOML file per chapter (format in ``textbook/README.md``). Each ``[[example]]`` holds the
 inputs as printed and one ``[[example.quantity]]`` per published number with its printed
 decimals, unit and status; each ``[[formula]]`` records a printed formula checked against
 sympy. This module only reads and validates; :mod:`photolib.book.verify` recomputes.
+
+``textbook/pages.toml`` maps the line numbers of the book's OCR text (the seed) to the printed
+pages of Chibunichev (2022): :func:`book_page` and :func:`page_citation` turn a seed line into
+"p. 57" (exact) or "p. ≈57" (interpolated between the page anchors), :func:`source_citation`
+names the other sources (papers, a thesis) that have no page anchors.
 """
 
 from __future__ import annotations
@@ -17,7 +22,10 @@ from pathlib import Path
 
 from ..errors import InputError
 
-STATUSES = ("reproduced", "input-rounding", "erratum", "not-reproducible", "transcribed")
+STATUSES = ("reproduced", "input-rounding", "erratum", "transcription", "not-reproducible", "transcribed")
+# The two statuses of a wrong printed value: an error of the book, and a defect of the OCR
+# transcription of the source (the book itself most likely right). Both record the correct value.
+WRONG_STATUSES = ("erratum", "transcription")
 
 
 def textbook_dir() -> Path:
@@ -52,10 +60,10 @@ class Quantity:
     unit: str = ""
     bound: float | None = None          # input-rounding: the largest admissible |computed − printed|
     reason: str = ""                    # input-rounding / not-reproducible: why
-    correct: object = None              # erratum: the correct value
+    correct: object = None              # erratum / transcription: the correct value
     correct_decimals: int | None = None
-    diagnosis: str = ""                 # erratum: what is wrong
-    proof: str = ""                     # erratum: how it was established
+    diagnosis: str = ""                 # erratum / transcription: what is wrong
+    proof: str = ""                     # erratum / transcription: how it was established
     as_printed: bool = False            # erratum: the "as printed" computation reproduces the book
 
 
@@ -114,6 +122,10 @@ class Chapter:
         raise KeyError(f"chapter {self.number} has no example {example_id!r}")
 
 
+def _article(status: str) -> str:
+    return "an erratum" if status == "erratum" else f"a {status}"
+
+
 def _quantity(raw: dict, where: str) -> Quantity:
     raw = dict(raw)
     for key in ("name", "printed", "value", "status"):
@@ -124,8 +136,8 @@ def _quantity(raw: dict, where: str) -> Quantity:
     q = Quantity(**raw)
     if q.status == "input-rounding" and (q.bound is None or not q.reason):
         raise InputError(f"{where}/{q.name}: input-rounding needs 'bound' and 'reason'")
-    if q.status == "erratum" and (q.correct is None or not q.diagnosis or not q.proof):
-        raise InputError(f"{where}/{q.name}: an erratum needs 'correct', 'diagnosis' and 'proof'")
+    if q.status in WRONG_STATUSES and (q.correct is None or not q.diagnosis or not q.proof):
+        raise InputError(f"{where}/{q.name}: {_article(q.status)} needs 'correct', 'diagnosis' and 'proof'")
     if q.status == "not-reproducible" and not q.reason:
         raise InputError(f"{where}/{q.name}: not-reproducible needs 'reason'")
     return q
@@ -174,10 +186,10 @@ def load_chapter(number: int) -> Chapter:
         if fm["id"] in seen:
             raise InputError(f"{path.name}:{fm['id']}: duplicate id")
         seen.add(fm["id"])
-        if fm["status"] not in ("reproduced", "erratum"):
-            raise InputError(f"{path.name}:{fm['id']}: a formula is 'reproduced' or 'erratum'")
-        if fm["status"] == "erratum" and not (fm.get("correct") and fm.get("diagnosis") and fm.get("proof")):
-            raise InputError(f"{path.name}:{fm['id']}: an erratum needs 'correct', 'diagnosis' and 'proof'")
+        if fm["status"] not in ("reproduced", *WRONG_STATUSES):
+            raise InputError(f"{path.name}:{fm['id']}: a formula is 'reproduced', 'erratum' or 'transcription'")
+        if fm["status"] in WRONG_STATUSES and not (fm.get("correct") and fm.get("diagnosis") and fm.get("proof")):
+            raise InputError(f"{path.name}:{fm['id']}: {_article(fm['status'])} needs 'correct', 'diagnosis' and 'proof'")
         formulas.append(Formula(chapter=number, seed=fm.get("seed", seed), **{k: v for k, v in fm.items() if k != "seed"}))
     return Chapter(number, raw["title"], raw.get("title_original", ""), seed, raw.get("lines", []), examples, formulas)
 
@@ -185,3 +197,140 @@ def load_chapter(number: int) -> Chapter:
 def available_chapters() -> list[int]:
     """Chapter numbers that have a ``textbook/chNN.toml``."""
     return sorted(int(p.stem[2:]) for p in textbook_dir().glob("ch[0-9][0-9].toml"))
+
+
+# --- printed pages ------------------------------------------------------------------------------------
+PAGE_ANCHOR_KINDS = ("heading", "number", "glued")
+_ENDS_PAGE = ("number", "glued")          # the printed page number: its page ends on (or inside) that line
+
+
+@dataclass(frozen=True)
+class PageAnchor:
+    """A seed line whose printed page is known (``textbook/pages.toml``).
+
+    ``kind`` is ``"heading"`` (a heading listed in the book's table of contents: the line is on
+    ``page``), ``"number"`` (a line holding only the printed page number: page ``page`` ends
+    there) or ``"glued"`` (the page number glued into the text: page ``page`` ends inside the line).
+    """
+
+    line: int
+    page: int
+    kind: str
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class PageMap:
+    """The page anchors of the book's seed and the names of the other sources."""
+
+    seed: str
+    anchors: tuple
+    sources: dict
+
+
+@lru_cache(maxsize=None)
+def load_pages() -> PageMap:
+    """Read and validate ``textbook/pages.toml`` (an empty map when the file is absent).
+
+    The anchors must increase in line; their pages must not decrease, and after an anchor that
+    ends a page (``"number"``, ``"glued"``) the next anchor must be on a later page.
+    """
+    path = textbook_dir() / "pages.toml"
+    if not path.exists():
+        return PageMap("", (), {})
+    with path.open("rb") as fh:
+        raw = tomllib.load(fh)
+    anchors = []
+    for i, a in enumerate(raw.get("anchor", [])):
+        try:
+            anchor = PageAnchor(int(a["line"]), int(a["page"]), a["kind"], a.get("note", ""))
+        except KeyError as missing:
+            raise InputError(f"pages.toml: anchor {i + 1} lacks {missing}") from None
+        if anchor.kind not in PAGE_ANCHOR_KINDS:
+            raise InputError(f"pages.toml: anchor at line {anchor.line} has unknown kind {anchor.kind!r} "
+                             f"(one of {', '.join(PAGE_ANCHOR_KINDS)})")
+        if anchors:
+            prev = anchors[-1]
+            later = prev.page + 1 if prev.kind in _ENDS_PAGE else prev.page
+            if anchor.line <= prev.line or anchor.page < later:
+                raise InputError(f"pages.toml: anchor line {anchor.line} → p. {anchor.page} does not follow "
+                                 f"line {prev.line} → p. {prev.page} ({prev.kind}): lines must increase and "
+                                 "pages must not go back")
+        anchors.append(anchor)
+    sources = {seed: {"name": s.get("name", seed), "sections": bool(s.get("sections", False))}
+               for seed, s in raw.get("source", {}).items()}
+    return PageMap(raw.get("seed", ""), tuple(anchors), sources)
+
+
+def book_page(line: int) -> tuple[int, bool]:
+    """The printed page of Chibunichev (2022) on which a line of its OCR text (the seed) stands.
+
+    Between the page anchors of ``textbook/pages.toml`` (headings of the table of contents and
+    the page numbers the OCR kept) the page is bounded below by the last anchor before the line
+    and above by the next one; when both bounds agree the page is ``exact``. Otherwise it is the
+    linear interpolation between the two anchors (a heading counted in the middle of its page, a
+    printed page number at the end of its page), kept within the bounds, and ``exact`` is False:
+    cite it as "p. ≈N".
+
+    Parameters
+    ----------
+    line : int
+        1-based line of the seed named in ``textbook/pages.toml`` (``000_0363cf98558e0ca3.txt``).
+
+    Returns
+    -------
+    (page, exact) : tuple of int and bool
+
+    Raises
+    ------
+    InputError
+        If ``line`` is not a positive integer or lies outside the lines the anchors cover.
+
+    References
+    ----------
+    The anchors: the contents of the book (seed lines 6970 ff.) and the page numbers printed in the
+    text (e.g. "19" at seed line 429); see the header of ``textbook/pages.toml``.
+
+    Examples
+    --------
+    >>> book_page(410)          # the heading of §1.5, p. 19 in the contents
+    (19, True)
+    >>> book_page(420)          # between §1.5 (p. 19) and the printed "19" at line 429
+    (19, True)
+    >>> book_page(500)          # between §1.7 (p. 21) and §1.8 (p. 23)
+    (22, False)
+    """
+    if isinstance(line, bool) or not isinstance(line, int) or line < 1:
+        raise InputError(f"line must be a positive integer (a line of the seed), got {line!r}")
+    anchors = load_pages().anchors
+    if not anchors:
+        raise InputError("no page anchors: textbook/pages.toml is missing or empty")
+    if not anchors[0].line <= line <= anchors[-1].line:
+        raise InputError(f"line {line} is outside the lines the page anchors cover "
+                         f"({anchors[0].line}–{anchors[-1].line})")
+    before = [a for a in anchors if a.line <= line]
+    after = [a for a in anchors if a.line >= line]
+    low = max(a.page if a.line == line or a.kind not in _ENDS_PAGE else a.page + 1 for a in before)
+    high = min(a.page for a in after)
+    if low >= high:
+        return high, True
+    a, b = before[-1], after[0]
+    position = lambda x: x.page + (1.0 if x.kind in _ENDS_PAGE else 0.5)  # noqa: E731
+    estimate = position(a) + (line - a.line) / (b.line - a.line) * (position(b) - position(a))
+    return min(max(int(estimate), low), high), False
+
+
+def page_citation(lines) -> str:
+    """"p. 19", "p. ≈22" or "pp. ≈22–23" for a seed line or a (first, last) line range.
+
+    Examples
+    --------
+    >>> page_citation([410, 420])
+    'p. 19'
+    >>> page_citation(500)
+    'p. ≈22'
+    """
+    first, last = (lines, lines) if isinstance(lines, int) else (lines[0], lines[-1])
+    (p1, exact1), (p2, exact2) = book_page(first), book_page(last)
+    mark = "" if exact1 and exact2 else "≈"
+    return f"p. {mark}{p1}" if p1 == p2 else f"pp. {mark}{p1}–{p2}"

@@ -11,6 +11,8 @@ Status rules (see ``textbook/README.md``):
 * ``erratum`` — it does not, and the computed value equals the recorded correct one; if the
   entry says ``as_printed = true`` the example's "as printed" computation must reproduce the
   printed value.
+* ``transcription`` — the same check as ``erratum``, for a number or formula that the OCR
+  transcription of the source lost or garbled while the book itself is (most likely) right.
 * ``not-reproducible`` — the book lacks the data; the check is that no computation claims it.
 * ``transcribed`` — data only (specifications); the value is shown, nothing to compute.
 """
@@ -24,7 +26,7 @@ import os
 import re
 from dataclasses import dataclass
 
-from .textbook import Example, Formula, available_chapters, load_chapter
+from .textbook import WRONG_STATUSES, Example, Formula, available_chapters, load_chapter
 
 
 def resolve(target: str):
@@ -91,7 +93,7 @@ class Row:
             verdict = "the computed value no longer rounds to the printed one"
         elif self.status == "input-rounding":
             verdict = "the difference exceeds the recorded bound"
-        elif self.status == "erratum":
+        elif self.status in WRONG_STATUSES:
             verdict = f"the computed value no longer rounds to the recorded correct value {self.expected}"
         else:
             verdict = "the transcribed value differs from the computed one"
@@ -154,7 +156,7 @@ def check_example(example: Example) -> list[Row]:
             ok = (not same) and _is_number(value) and abs(value - q.value) <= q.bound
             detail = f"bound {q.bound}"
             tolerance = q.bound
-        elif q.status == "erratum":
+        elif q.status in WRONG_STATUSES:
             right = matches_printed(value, q.correct, q.correct_decimals if q.correct_decimals is not None else q.decimals)
             ok = (not same) and right
             if q.as_printed:
@@ -168,14 +170,14 @@ def check_example(example: Example) -> list[Row]:
             ok = value is None or same
         if not ok and value is None and q.status != "transcribed":
             detail = "nothing computed for this quantity"
-        elif not ok and same and q.status in ("input-rounding", "erratum", "not-reproducible"):
+        elif not ok and same and q.status in ("input-rounding", *WRONG_STATUSES, "not-reproducible"):
             detail = "now reproduces"
         observed = q.status if ok else _observed_status(value, q, same)
         rows.append(Row(example.chapter, example.id, q.name, q.printed, format_value(value, q.decimals),
                         q.status, ok, detail, format_value(printed_run, q.decimals) if printed_run is not None else "",
                         book_value=q.value, computed_value=value if _is_number(_plain(value)) or isinstance(value, str)
                         else None, unit=q.unit, tolerance=tolerance,
-                        expected=q.correct if q.status == "erratum" else None,
+                        expected=q.correct if q.status in WRONG_STATUSES else None,
                         reason=q.diagnosis or q.reason, observed_status=observed))
     return rows
 
@@ -190,17 +192,19 @@ def _observed_status(value, q, same: bool) -> str:
         return "input-rounding"
     if q.correct is not None and matches_printed(value, q.correct,
                                                  q.correct_decimals if q.correct_decimals is not None else q.decimals):
-        return "erratum"
+        return q.status if q.status in WRONG_STATUSES else "erratum"
     return "differs (unclassified)"
 
 
 def check_formula(formula: Formula) -> Row:
-    """Compare a printed formula with its sympy derivation: ``reproduced`` iff they agree."""
+    """Compare a printed formula with its sympy derivation: ``reproduced`` iff they agree; an
+    ``erratum`` or ``transcription`` iff the printed (as transcribed) form differs."""
     agrees = bool(resolve(formula.compute)(formula.inputs)["printed_equals_derived"])
     ok = agrees if formula.status == "reproduced" else not agrees
+    wrong = formula.status if formula.status in WRONG_STATUSES else "erratum"
     return Row(formula.chapter, formula.id, formula.equation, "printed formula",
                "equals derivation" if agrees else "differs from derivation", formula.status, ok,
-               reason=formula.diagnosis, observed_status="reproduced" if agrees else "erratum")
+               reason=formula.diagnosis, observed_status="reproduced" if agrees else wrong)
 
 
 def verify(chapters=None, jobs: int = 1) -> list[Row]:
@@ -268,6 +272,7 @@ STATUS_COLOURS = {
     "reproduced": "#1a7f37",          # green: the book's number comes out
     "input-rounding": "#0969da",      # blue: differs only by the book's rounding of its inputs
     "erratum": "#bc4c00",             # orange: the book is wrong; the correct value is shown
+    "transcription": "#1b7c83",       # teal: the OCR source lost or garbled it; the book is most likely right
     "not-reproducible": "#6e7781",    # grey: the book does not print the data
     "transcribed": "#8250df",         # purple: data, nothing to compute
     "CHANGED": "#cf222e",             # red: the recorded status no longer holds
@@ -358,6 +363,7 @@ _LEGEND = {
     "reproduced": "the book's number comes out",
     "input-rounding": "differs only through the book's rounding of its inputs",
     "erratum": "the book is wrong (correct value given)",
+    "transcription": "lost or garbled in the OCR of the source, the book most likely right (correct value given)",
     "not-reproducible": "the book does not print the data",
     "transcribed": "data, nothing to compute",
     "CHANGED": "the recorded status no longer holds",

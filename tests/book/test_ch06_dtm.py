@@ -88,4 +88,4 @@ def test_fragment_entries_keep_their_status():
     for f in formulas:
         assert check_formula(f).ok, f.id
     lost = next(f for f in formulas if f.id == "6.6.1-plane-lost")
-    assert lost.status == "erratum" and "OCR" in lost.diagnosis and "(6.7.1)" in lost.diagnosis
+    assert lost.status == "transcription" and "OCR" in lost.diagnosis and "(6.7.1)" in lost.diagnosis

@@ -135,10 +135,28 @@ def test_errata_lists_every_erratum_with_its_correction(capsys):
     assert main(["errata", "--chapter", "4", "--json"]) == 0
     records = json.loads(capsys.readouterr().out)
     assert len(records) == len(errata([4], recompute=False)) > 0
-    assert all(r["status"] == "erratum" and r["diagnosis"] for r in records)
+    assert all(r["status"] in ("erratum", "transcription") and r["diagnosis"] for r in records)
+    assert all(r["where"].startswith("§4.") and ", p" in r["where"] for r in records)
     assert main(["errata", "--chapter", "4"]) == 0
     out = capsys.readouterr().out
     assert out.rstrip().endswith(f"{len(records)} errata") and "correct" in out
+    assert max(map(len, out.splitlines())) <= 100
+
+
+def test_errata_marks_transcriptions_and_cites_pages_first(capsys):
+    """Both kinds are listed and marked; the page comes first, the OCR lines last; a shared
+    diagnosis is printed once."""
+    assert main(["errata", "--chapter", "1", "--chapter", "8"]) == 0
+    out = capsys.readouterr().out
+    assert "[transcription]" in out and "[erratum]" in out
+    head = next(line for line in out.splitlines() if "(1.8.3) a1 …" in line)
+    assert head.startswith("  §1.8, p") and "eq. (1.8.3) a1 … b6 (11 formulas) [erratum]" in head
+    assert out.count("The general form is dF_x/dp") == 1
+    assert out.index(head) < out.index("lines 572–576")
+    transcriptions = [line for line in out.splitlines() if "[transcription]" in line]
+    assert len(transcriptions) >= 4 and all(line.lstrip().startswith("§") for line in transcriptions)
+    last = out.rstrip().splitlines()[-1]
+    assert "errors of the book (erratum)" in last and "defects of the OCR transcription (transcription)" in last
 
 
 def test_the_wheel_carries_the_published_numbers_and_verifies_outside_the_checkout(tmp_path):
