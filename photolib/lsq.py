@@ -2017,7 +2017,8 @@ def _solve_block_global(eq: GlobalBlockCorrectionEquations, n_frames: int, n_poi
                 f"the block geometry cannot separate the block-wide unknowns {', '.join(involved)} from the "
                 f"other unknowns (smallest scaled eigenvalue of their reduced normal matrix "
                 f"{max(w[0], 0.0):.1e}{msg}); add geometry that distinguishes them — terrain relief, "
-                "different flying heights, convergent or rotated images, GNSS centres — or fix them")
+                "convergent or rotated images, GNSS centres (over flat ground different flying heights "
+                "alone do not: each image's Z_S absorbs a change of f) — or fix them")
         iG = np.linalg.inv(G)
     else:
         iG = np.zeros((0, 0))

@@ -703,7 +703,9 @@ def aerial_block(n_strips: int = 2, images_per_strip: int = 5, *, f: float = 100
         (:func:`photolib.camera.apply_distortion`), as a real distorting lens records them (§3.6).
     strip_heights : sequence of float, optional
         Flying height of each strip (replaces ``flying_height`` for the centres; overlaps are
-        laid out for ``flying_height``). Different heights help self-calibration separate f from Z_S.
+        laid out for ``flying_height``). Different heights help self-calibration separate f from Z_S
+        only together with GNSS centres or relief: over flat ground each image's Z_S absorbs a
+        change of f whatever its height.
 
     Returns
     -------
