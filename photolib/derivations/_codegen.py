@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import sympy as sp
 
-from . import bundle, collinearity, coplanarity, distortion, gnss, intersection, mockup, projective, similarity
+from . import bundle, collinearity, coplanarity, distortion, gnss, intersection, mockup, plane, projective, similarity
 from .model import _model_key
 
 __all__: list = []
@@ -36,6 +36,7 @@ def _models():
     out += [("gnss_coplanarity", gnss.gnss_coplanarity_model()), ("gnss_collinearity", gnss.gnss_collinearity_model()),
             ("homography", projective.homography_model())]
     out += [("mockup_collinearity", mockup.mockup_collinearity_model()), ("mockup_tripod", mockup.mockup_tripod_model())]
+    out += [("plane_congruent", plane.congruent_model())]
     return out
 
 

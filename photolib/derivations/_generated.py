@@ -2070,6 +2070,18 @@ def mockup_tripod_jacobian(f, x_0, y_0, S0_X, S0_Y, S0_Z, l_X, l_Y, l_Z, alpha, 
     return [-x27*x30, 1, 0, -x11*x31 + x34, x35, -x31*x36 - x38, -x31*(-x1**2*x39 + x11*x12 + x22*x36) - x33*x41, -x31*(x12*x15 + x22*x23 + x42) - x33*x44, -x31*(x12*x19 - x22*x37 + x40) - x33*x45, -x31*(x12*x25 + x12*x47 + x18*x36 + x22*x46) - x33*x48, -x31*(-x1*x7 - x10*x56 + x12*x54 + x13*x55 + x22*x53 + x3*x49) - x33*x57, -x31*(x12*x59 + x22*x60 + x3*x58 + x62) - x33*x61, -x12*x31 - x34, -x35, -x22*x31 + x38, -x27*x62, 0, 1, -x15*x31 + x64, x65, -x23*x31 - x66, -x31*(x11*x16 + x24*x36 + x42) - x41*x63, -x31*(x15*x16 + x23*x24 - x39*x4**2) - x44*x63, -x31*(x16*x19 - x24*x37 + x43) - x45*x63, -x31*(x16*x25 + x16*x47 + x18*x23 + x24*x46) - x48*x63, -x31*(-x14*x56 + x16*x54 + x24*x53 - x4*x7 + x49*x5 + x51*x55) - x57*x63, -x31*(x11*x18 + x16*x59 + x24*x60 + x25*x36 - x29 + x5*x58) - x61*x63, -x16*x31 - x64, -x65, -x24*x31 + x66]
 
 
+def plane_congruent_residuals(alpha, t_x, t_y, xbar, ybar, x_obs, y_obs):
+    x0 = cos(alpha)
+    x1 = sin(alpha)
+    return [t_x + x0*xbar - x1*ybar - x_obs, t_y + x0*ybar + x1*xbar - y_obs]
+
+
+def plane_congruent_jacobian(alpha, t_x, t_y, xbar, ybar, x_obs, y_obs):
+    x0 = sin(alpha)
+    x1 = cos(alpha)
+    return [-x0*xbar - x1*ybar, 1, 0, -x0*ybar + x1*xbar, 0, 1]
+
+
 def printed_resection(X_S, Y_S, Z_S, omega, alpha, kappa, X, Y, Z, x, y, f, x_0, y_0):
     x0 = cos(omega)
     x1 = cos(alpha)
@@ -2383,6 +2395,7 @@ MODELS = {
     'dc9fad50509633935a6b39f749a5006461b650c8eb6973752384aac5454819cb': (homography_residuals, homography_jacobian),  # homography
     'af719d5cf5d28a051ff001e8b0f2dfe556b5ec3341c947ebc18878a3866c473a': (mockup_collinearity_residuals, mockup_collinearity_jacobian),  # mockup-collinearity
     'c19a86b1169fe8f9f94aa20973511844cb025eab6677b6994368e0aad20c7b08': (mockup_tripod_residuals, mockup_tripod_jacobian),  # mockup-tripod
+    '09efb616beabe0882881cd678b49852378a9723487795dfae658451b4f8a4206': (plane_congruent_residuals, plane_congruent_jacobian),  # plane-congruent
 }
 
 PRINTED = {
