@@ -39,6 +39,9 @@ Modules, by topic:
 * :mod:`~photolib.derivations.registration` — the rigid transform without scale (9.5.1).
 * :mod:`~photolib.derivations.terrestrial` — condition equations, polar collinearity and the
   normal case of terrestrial pairs, Chapter 11, §11.6–§11.8.
+* :mod:`~photolib.derivations.direct_orientation` — the boresight-misalignment calibration
+  (6 parameters), Hanzl §7.3.
+* :mod:`~photolib.derivations.plane` — the congruent plane transformation of Hanzl's §2.5.
 * :mod:`~photolib.derivations.planar_target` — Sementsov's planar-target theory (6)–(18) and the
   additional-parameter models (2)–(4), appendix to Chapter 11.
 * :mod:`~photolib.derivations.mockup` — collinearity with f, x₀, y₀ unknown and the tripod-head
@@ -54,13 +57,14 @@ Examples
 (2, 6)
 """
 
-from . import (bundle, collinearity, coplanarity, distortion, georef, gnss, intersection, lidar, matching,
-               mockup, model, orthophoto, planar_target, projective, quaternion, radar, registration, rotation,
+from . import (bundle, collinearity, coplanarity, direct_orientation, distortion, georef, gnss, intersection, lidar, matching,
+               mockup, model, orthophoto, planar_target, plane, projective, quaternion, radar, registration, rotation,
                scanner, shapes, similarity, symbols, terrestrial)
 from .bundle import *  # noqa: F401,F403
 from .collinearity import *  # noqa: F401,F403
 from .coplanarity import *  # noqa: F401,F403
 from .coplanarity import _IMAGE1_SUBS  # noqa: F401 — used by the book's tests
+from .direct_orientation import *  # noqa: F401,F403
 from .distortion import *  # noqa: F401,F403
 from .georef import *  # noqa: F401,F403
 from .gnss import *  # noqa: F401,F403
@@ -71,6 +75,7 @@ from .mockup import *  # noqa: F401,F403
 from .model import *  # noqa: F401,F403
 from .orthophoto import *  # noqa: F401,F403
 from .planar_target import *  # noqa: F401,F403
+from .plane import *  # noqa: F401,F403
 from .projective import *  # noqa: F401,F403
 from .quaternion import *  # noqa: F401,F403
 from .radar import *  # noqa: F401,F403
@@ -85,5 +90,5 @@ from .terrestrial import *  # noqa: F401,F403
 __all__ = [name for module in (symbols, model, rotation, quaternion, distortion, collinearity, intersection,
                                coplanarity, similarity, bundle, projective, gnss, matching, orthophoto,
                                scanner, radar, georef, shapes, lidar, registration,
-                               terrestrial, planar_target, mockup)
+                               terrestrial, planar_target, mockup, plane, direct_orientation)
            for name in module.__all__]
