@@ -23,6 +23,7 @@ from functools import lru_cache
 
 import sympy as sp
 
+from .model import _lambdified_parts
 from .rotation import rotation_matrix_symbolic
 
 __all__ = ["BORESIGHT_PARAMETERS", "boresight_model", "boresight_functions"]
@@ -96,7 +97,4 @@ def boresight_functions():
     >>> [float(v) for v in r(*([0.0] * 6), 0, 0, 1000.0, *eye, 100.0, 0, 0.0, 100.0, 0, 0)]
     [10.0, 0.0]
     """
-    m = boresight_model()
-    args = (*m["parameters"], *m["data"])
-    return (sp.lambdify(args, list(m["residual"]), "numpy"),
-            sp.lambdify(args, list(m["jacobian"]), "numpy"))
+    return _lambdified_parts(boresight_model())

@@ -24,6 +24,7 @@ from functools import lru_cache
 
 import sympy as sp
 
+from .model import _lambdified_parts
 from .rotation import rotation_matrix_symbolic
 
 __all__ = ["triangulation_depth_model", "ray_plane_model", "plane_model", "plane_functions",
@@ -223,10 +224,7 @@ def mobile_mapping_functions():
     >>> len(J(*([0.0] * 6), *([0.0] * 3), *[1, 0, 0, 0, 1, 0, 0, 0, 1], *([1.0] * 3), *([0.0] * 3)))
     18
     """
-    m = mobile_mapping_model()
-    args = (*m["parameters"], *m["data"])
-    return (sp.lambdify(args, list(m["residual"]), "numpy"),
-            sp.lambdify(args, list(m["jacobian"]), "numpy"))
+    return _lambdified_parts(mobile_mapping_model())
 
 
 def scanner_camera_rotation():

@@ -170,6 +170,15 @@ def _lambdify(args, exprs):
     return sp.lambdify(list(args), list(exprs), modules="numpy", cse=True)
 
 
+def _lambdified_parts(model: dict) -> tuple:
+    """(residual, Jacobian) lambdified from a model written as a dict with ``parameters``, ``data``,
+    ``residual`` and ``jacobian`` (the mobile-mapping and boresight models): functions of
+    ``(*parameters, *data)`` returning the entries as lists."""
+    args = (*model["parameters"], *model["data"])
+    return (sp.lambdify(args, list(model["residual"]), "numpy"),
+            sp.lambdify(args, list(model["jacobian"]), "numpy"))
+
+
 @lru_cache(maxsize=None)
 def _compiled(model: Model):
     from . import _generated
