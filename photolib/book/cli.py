@@ -1,12 +1,14 @@
 """Command line for readers, instructors and regression checks of the published numbers.
 
-* ``photolib verify [--chapter N] [--only-changed] [--wide] [--json] [--jobs N]`` recomputes every
+* ``photolib verify [--chapter N] [--source KEY] [--only-changed] [--wide] [--json] [--jobs N]`` recomputes every
   published number recorded in ``textbook/`` with the library. It prints the summary first (counts
   per status, overall and per chapter), then one row per quantity in 100 columns (``--wide``: full
   cells), then, for every entry whose recorded status no longer holds, what changed: the recorded
   status, the book's and the computed value, the difference, the tolerance and the recorded reason.
   ``--only-changed`` prints only those rows. ``--json`` prints the rows (numbers as numbers, with
   unit, tolerance and reason) and the summaries.
+* ``--source KEY`` (verify, list, errata) keeps the entries taken from one text: ``chibunichev`` (the
+  textbook), ``gnss``, ``hanzl``, ``mrf``, ``sementsov`` (the keys of ``textbook/pages.toml``).
 * ``photolib list [--chapter N]`` lists the worked examples, tables and formulas with their ids.
 * ``photolib show ID`` shows one of them: where it is in the book, its inputs, the book · computed ·
   status table and the notes, diagnoses and reasons.
@@ -34,7 +36,7 @@ import textwrap
 
 from .. import __version__
 from .assignment_cli import RUNNERS as _ASSIGNMENT_RUNNERS, add_assignment_commands
-from .textbook import STATUSES, available_chapters, load_chapter
+from .textbook import STATUSES, available_chapters, load_chapter, load_pages, source_seeds
 from .verify import check_example, check_formula, default_jobs, example_table, summary, verify
 
 USAGE_ERROR = 2
@@ -82,6 +84,21 @@ def _chapters(args) -> list[int]:
     return sorted(set(args.chapter))
 
 
+def _source(args) -> str | None:
+    """The seed file selected by ``--source KEY`` (None: every source)."""
+    key = getattr(args, "source", None)
+    if not key:
+        return None
+    seeds = source_seeds()
+    if key not in seeds:
+        raise _UsageError(f"unknown source {key!r} (known: {', '.join(sorted(seeds))})")
+    return seeds[key]
+
+
+def _source_name(seed: str | None) -> str:
+    return "" if seed is None else load_pages().sources[seed]["name"]
+
+
 # --- verify ------------------------------------------------------------------------------------------
 def _per_chapter(rows) -> list[dict]:
     chapters = sorted({r.chapter for r in rows})
@@ -123,7 +140,10 @@ def _run_verify(args, out) -> int:
     chapters = _chapters(args)
     if args.jobs is not None and args.jobs < 1:
         raise _UsageError(f"--jobs must be at least 1, got {args.jobs}")
-    rows = verify(chapters, jobs=default_jobs() if args.jobs is None else args.jobs)
+    source = _source(args)
+    rows = verify(chapters, jobs=default_jobs() if args.jobs is None else args.jobs, source=source)
+    if not rows:
+        raise _UsageError(f"no entries from {_source_name(source)} in the chapters selected")
     counts, per_chapter = summary(rows), _per_chapter(rows)
     changed = [r for r in rows if not r.ok]
     if args.json:
@@ -133,6 +153,8 @@ def _run_verify(args, out) -> int:
                   out, ensure_ascii=False, indent=1, default=str)
         out.write("\n")
         return STATUS_CHANGED if changed else 0
+    if source:
+        out.write(f"source: {_source_name(source)}\n")
     _summary_text(rows, counts, per_chapter, out)
     shown = changed if args.only_changed else rows
     if shown:
@@ -146,13 +168,15 @@ def _run_verify(args, out) -> int:
 
 
 # --- list and show ----------------------------------------------------------------------------------
-def _entries(chapters):
+def _entries(chapters, source=None):
     for number in chapters:
         chapter = load_chapter(number)
         for ex in chapter.examples:
-            yield number, ex, "example"
+            if source is None or ex.seed == source:
+                yield number, ex, "example"
         for fm in chapter.formulas:
-            yield number, fm, "formula"
+            if source is None or fm.seed == source:
+                yield number, fm, "formula"
 
 
 def _statuses(entry, kind) -> str:
@@ -166,7 +190,7 @@ def _statuses(entry, kind) -> str:
 
 def _run_list(args, out) -> int:
     body = []
-    for number, entry, kind in _entries(_chapters(args)):
+    for number, entry, kind in _entries(_chapters(args), _source(args)):
         title = entry.title if kind == "example" else f"{entry.equation} (formula)"
         body.append([str(number), entry.id, f"§{entry.section}", _statuses(entry, kind), title])
     caps = None if args.wide else [2, 28, 7, 24, 27]
@@ -239,7 +263,8 @@ def _run_errata(args, out) -> int:
     (erratum: an error of the book; transcription: lost or garbled in the OCR), the values, the
     diagnosis once per group, and the OCR lines last."""
     from .errata import errata, group_records
-    records = errata(_chapters(args), recompute=False)
+    source = _source(args)
+    records = [r for r in errata(_chapters(args), recompute=False) if source is None or r.seed == source]
     if args.json:
         json.dump([r.as_dict() for r in records], out, ensure_ascii=False, indent=1, default=str)
         out.write("\n")
@@ -281,8 +306,11 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"photolib {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
-    def chapter_option(p):
+    def chapter_option(p, source=True):
         p.add_argument("--chapter", type=int, action="append", help="only this chapter (repeatable)")
+        if source:
+            p.add_argument("--source", metavar="KEY",
+                           help="only the entries from one source text: " + ", ".join(sorted(source_seeds())))
 
     p_verify = sub.add_parser("verify", help="recompute the book's published numbers from textbook/")
     chapter_option(p_verify)
@@ -297,7 +325,7 @@ def build_parser() -> argparse.ArgumentParser:
     p_list.add_argument("--wide", action="store_true", help="full cells instead of 100 columns")
     p_show = sub.add_parser("show", help="show one example or formula: inputs, book · computed · status, notes")
     p_show.add_argument("id", help="the id, as `photolib list` prints it")
-    chapter_option(p_show)
+    chapter_option(p_show, source=False)
     p_show.add_argument("--wide", action="store_true", help="the inputs in full")
     p_errata = sub.add_parser("errata", help="list the errors found in the book and the OCR transcription defects")
     chapter_option(p_errata)

@@ -257,8 +257,12 @@ def load_pages() -> PageMap:
                                  f"line {prev.line} → p. {prev.page} ({prev.kind}): lines must increase and "
                                  "pages must not go back")
         anchors.append(anchor)
-    sources = {seed: {"name": s.get("name", seed), "sections": bool(s.get("sections", False))}
+    sources = {seed: {"name": s.get("name", seed), "sections": bool(s.get("sections", False)),
+                      "key": s.get("key", "")}
                for seed, s in raw.get("source", {}).items()}
+    keys = [s["key"] for s in sources.values() if s["key"]]
+    if len(keys) != len(set(keys)):
+        raise InputError(f"pages.toml: the source keys must be unique, got {keys}")
     return PageMap(raw.get("seed", ""), tuple(anchors), sources)
 
 
@@ -318,6 +322,21 @@ def book_page(line: int) -> tuple[int, bool]:
     position = lambda x: x.page + (1.0 if x.kind in _ENDS_PAGE else 0.5)  # noqa: E731
     estimate = position(a) + (line - a.line) / (b.line - a.line) * (position(b) - position(a))
     return min(max(int(estimate), low), high), False
+
+
+def source_seeds() -> dict[str, str]:
+    """The source keys of ``textbook/pages.toml`` and the seed file each selects.
+
+    Entries filed under the book's chapters may come from other texts (the GNSS-centres paper,
+    Hanzl's study text, the MRF paper, Sementsov's thesis); ``photolib verify --source KEY``
+    selects the entries of one of them.
+
+    Examples
+    --------
+    >>> source_seeds()["hanzl"]
+    '002_d5f7929691601478.txt'
+    """
+    return {s["key"]: seed for seed, s in load_pages().sources.items() if s["key"]}
 
 
 def page_citation(lines) -> str:

@@ -207,8 +207,11 @@ def check_formula(formula: Formula) -> Row:
                reason=formula.diagnosis, observed_status="reproduced" if agrees else wrong)
 
 
-def verify(chapters=None, jobs: int = 1) -> list[Row]:
+def verify(chapters=None, jobs: int = 1, source: str | None = None) -> list[Row]:
     """Rows for every entry of the given chapters (all by default).
+
+    ``source`` (a seed file name, see :func:`photolib.book.textbook.source_seeds`) keeps only the
+    entries taken from that text, e.g. Hanzl's study text filed under several chapters.
 
     ``jobs`` > 1 checks the entries in that many worker processes (forked after the adapters are
     imported, so each worker starts with the modules loaded); the rows come back in the same
@@ -218,8 +221,10 @@ def verify(chapters=None, jobs: int = 1) -> list[Row]:
     entries = []
     for number in chapters or available_chapters():
         chapter = load_chapter(number)
-        entries += [(check_example, example) for example in chapter.examples]
-        entries += [(check_formula, formula) for formula in chapter.formulas]
+        entries += [(check_example, example) for example in chapter.examples
+                    if source is None or example.seed == source]
+        entries += [(check_formula, formula) for formula in chapter.formulas
+                    if source is None or formula.seed == source]
     jobs = min(int(jobs), len(entries))
     if jobs > 1 and "fork" in multiprocessing.get_all_start_methods():
         for target in {entry.compute for _, entry in entries if entry.compute}:

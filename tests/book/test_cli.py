@@ -26,7 +26,9 @@ def test_version(capsys):
                                   ["verify", "--no-such-flag"], ["no-such-command"], [],
                                   ["verify", "--jobs", "0"], ["verify", "--jobs", "two"],
                                   ["show"], ["show", "no-such-example"], ["show", "4.3-dlt", "--chapter", "99"],
-                                  ["list", "--chapter", "99"], ["errata", "--chapter", "99"]])
+                                  ["list", "--chapter", "99"], ["errata", "--chapter", "99"],
+                                  ["verify", "--source", "no-such-text"], ["list", "--source", "x"],
+                                  ["verify", "--source", "sementsov", "--chapter", "1"]])
 def test_usage_errors_are_one_line_and_exit_2(argv, capsys):
     try:
         code = main(argv)
@@ -115,6 +117,22 @@ def test_verify_fits_100_columns_with_the_summary_first(capsys):
     assert max(map(len, lines)) <= 100
     assert main(["verify", "--chapter", "1", "--wide", "--jobs", "1"]) == 0
     assert max(map(len, capsys.readouterr().out.splitlines())) > 100
+
+
+def test_source_selects_the_entries_of_one_text(capsys):
+    """``--source KEY`` keeps exactly the entries whose seed is that text's, across chapters."""
+    from photolib.book.textbook import available_chapters, load_chapter, source_seeds
+    seeds = source_seeds()
+    assert {"chibunichev", "gnss", "hanzl", "mrf", "sementsov"} <= set(seeds)
+    expected = {e.id for n in available_chapters() for e in (*load_chapter(n).examples, *load_chapter(n).formulas)
+                if e.seed == seeds["gnss"]}
+    assert main(["list", "--source", "gnss", "--wide"]) == 0
+    out = capsys.readouterr().out
+    listed = {line.split()[1] for line in out.splitlines()[1:] if line[:1].isdigit() and " entries;" not in line}
+    assert listed == expected and expected
+    assert main(["verify", "--source", "gnss", "--json", "--jobs", "1"]) == 0
+    rows = json.loads(capsys.readouterr().out)["rows"]
+    assert {r["example"] for r in rows} == expected
 
 
 def test_list_and_show(capsys):
