@@ -20,6 +20,12 @@ The module follows the chapter's order:
 * §2.13 a-priori accuracy of a normal-case pair: :func:`photo_base`, :func:`normal_case_accuracy`
   (2.13.1)–(2.13.3).
 
+Hanzl, Fotogrammetrie, Modul 01, §3 "Orientation and point determination from two images" (seed 002
+lines 344–674) adds his formulations: the closed-form intersection with known orientation
+:func:`intersection_known_eo` (§3.1), the counts of the joint orientation :func:`orientation_counts`
+(§3.2.2), the first-order y-parallax relative orientation :func:`relative_orientation_parallax`
+(§3.2.3.1) and the model deformation :func:`model_deformation` (§3.2.3.2).
+
 Conventions are those of Chapter 1: image coordinates and f in mm, object (and model)
 coordinates in m, angles in radians; the ray of an image point is (x − x₀, y − y₀, −f) (1.2.1)
 and A maps camera → object. Every rotation is built with an explicit sequence ``order``
@@ -34,6 +40,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import derivations
+from .derivations import parallax as _parallax
 from .camera import ExteriorOrientation, InteriorOrientation, as_points, correct_distortion, image_vector
 from .errors import ConvergenceError, DegenerateGeometryError, InputError, PointBehindCameraError
 from .lsq import Adjustment, gauss_newton
@@ -44,7 +51,8 @@ __all__ = ["RHO_SECONDS", "RO_NAMES", "SIMILARITY_NAMES", "convergence_angle", "
            "forward_intersection", "intersect_rays", "normal_case_intersection", "coplanarity", "y_parallax",
            "RelativeOrientation", "relative_orientation", "build_model", "SimilarityTransform",
            "similarity_closed_form", "absolute_orientation", "image_orientation_from_model",
-           "double_resection", "photo_base", "normal_case_accuracy"]
+           "double_resection", "photo_base", "normal_case_accuracy", "intersection_known_eo", "orientation_counts",
+           "relative_orientation_parallax", "model_deformation"]
 
 RHO_SECONDS = 180 * 3600 / np.pi
 """ρ″ = 206 264.8″ per radian (the book rounds it to 200 000″ in §2.1)."""
@@ -1874,3 +1882,345 @@ def normal_case_accuracy(H, f, b, m_x, m_y, m_p, x=0.0, y=0.0, approximate: bool
     if np.ndim(m_X) == np.ndim(m_Y) == np.ndim(m_Z) == 0:
         return float(m_X), float(m_Y), float(m_Z)
     return m_X, m_Y, m_Z
+
+
+# --- Hanzl, Fotogrammetrie, Modul 01, §3: orientation and points from two images ---------------------
+def intersection_known_eo(xy1, xy2, eo1: ExteriorOrientation, eo2: ExteriorOrientation,
+                          io1: InteriorOrientation, io2: InteriorOrientation | None = None,
+                          warn_ratio: float = 0.1) -> np.ndarray:
+    """Object points of a pair with known exterior orientation by Hanzl's closed form [§3.1].
+
+    For image j, X = X₀ⱼ + (Z − Z₀ⱼ)k_xj and Y = Y₀ⱼ + (Z − Z₀ⱼ)k_yj with
+    k_xj = (r₁₁x̄ + r₁₂ȳ − r₁₃c)/(r₃₁x̄ + r₃₂ȳ − r₃₃c), k_yj likewise with row 2 (x̄ = x − x₀,
+    ȳ = y − y₀; the ratios of the ray R(x̄, ȳ, −c), i.e. (2.3)). Equating the two X equations gives
+    Z = (X₀₂ − X₀₁ + Z₀₁k_x1 − Z₀₂k_x2)/(k_x1 − k_x2); X, Y follow from image 1. The book prints
+    "+r₁₃c", "+r₃₃c" and calls the Y ratio k_z (errata, lines 352–360).
+
+    Only the X equations are used: the form breaks down when k_x1 ≈ k_x2 (a base along Y, or a
+    point whose rays differ only in Y). It raises when k_x1 − k_x2 vanishes and warns
+    (``RuntimeWarning``) when |k_x1 − k_x2| < ``warn_ratio``·|(k_x1 − k_x2, k_y1 − k_y2)|; the
+    general method is the least-squares intersection of all four equations,
+    :func:`intersect_rays`.
+
+    Parameters
+    ----------
+    xy1, xy2 : (n, 2) arrays
+        Corresponding image coordinates (mm).
+    eo1, eo2 : ExteriorOrientation
+        Known exterior orientation (any rotation order; Hanzl's R is ``order="wak"``).
+    io1, io2 : InteriorOrientation
+        Interior orientation (``io2`` defaults to ``io1``).
+    warn_ratio : float
+        Threshold of the ill-conditioning warning (0 switches it off).
+
+    Returns
+    -------
+    (n, 3) ndarray
+        X, Y, Z (m).
+
+    Raises
+    ------
+    InputError
+        Wrong shapes or types, NaN/inf, a negative ``warn_ratio``.
+    DegenerateGeometryError
+        k_x1 = k_x2 for a point (the X equations do not fix Z), or a ray parallel to the XY plane.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §3.1, [H3.1-1/2] (seed 002 lines 348–370);
+    Chibunichev (2022), §2.4 (forward intersection).
+
+    Examples
+    --------
+    >>> from photolib.camera import ExteriorOrientation, InteriorOrientation
+    >>> io = InteriorOrientation(100.0)
+    >>> e1, e2 = ExteriorOrientation(0, 0, 1000), ExteriorOrientation(400, 0, 1000)
+    >>> intersection_known_eo([[20.0, 10.0]], [[-20.0, 10.0]], e1, e2, io).round(9) + 0.0
+    array([[200., 100.,   0.]])
+    """
+    io2 = io1 if io2 is None else io2
+    _check_type(eo1, ExteriorOrientation, "eo1")
+    _check_type(eo2, ExteriorOrientation, "eo2")
+    warn_ratio = float(_numbers(warn_ratio, "warn_ratio"))
+    if warn_ratio < 0:
+        raise InputError(f"warn_ratio must be ≥ 0, got {warn_ratio}")
+    xy1 = as_points(xy1, 2, "image-1 coordinates")
+    xy2 = as_points(xy2, 2, "image-2 coordinates")
+    _same_length(xy1, xy2)
+    r1, r2 = image_rays(xy1, eo1, io1), image_rays(xy2, eo2, io2)
+    if np.any(r1[:, 2] == 0) or np.any(r2[:, 2] == 0):
+        raise DegenerateGeometryError("a ray is parallel to the XY plane: k_x, k_y of §3.1 divide by its Z component")
+    kx1, ky1 = r1[:, 0] / r1[:, 2], r1[:, 1] / r1[:, 2]
+    kx2, ky2 = r2[:, 0] / r2[:, 2], r2[:, 1] / r2[:, 2]
+    dkx, dky = kx1 - kx2, ky1 - ky2
+    scale = 1.0 + np.abs(kx1) + np.abs(kx2)
+    bad = np.abs(dkx) <= 1e-12 * scale
+    if np.any(bad):
+        raise DegenerateGeometryError(
+            f"k_x1 = k_x2 for points {np.flatnonzero(bad).tolist()}: the X equations of §3.1 do not determine Z "
+            "(base along Y or parallel rays); use intersect_rays (least squares over all four equations)")
+    weak = np.abs(dkx) < warn_ratio * np.hypot(dkx, dky)
+    if np.any(weak):
+        import warnings
+        warnings.warn(f"k_x1 ≈ k_x2 for points {np.flatnonzero(weak).tolist()}: the closed form of §3.1 uses only the "
+                      "X equations and is ill-conditioned here (base not along X); prefer intersect_rays",
+                      RuntimeWarning, stacklevel=2)
+    X01, Y01, Z01 = eo1.center
+    X02, Z02 = eo2.center[0], eo2.center[2]
+    Z = (X02 - X01 + Z01 * kx1 - Z02 * kx2) / dkx                          # [H3.1-2]
+    return np.column_stack([X01 + (Z - Z01) * kx1, Y01 + (Z - Z01) * ky1, Z])
+
+
+def orientation_counts(full: int, planimetric: int, height: int, new: int = 0, images: int = 2) -> dict:
+    """Observations, unknowns and redundancy of the joint orientation of a pair [Hanzl §3.2.2].
+
+    Each point measured in every image gives 2·images equations (four for a pair); the unknowns
+    are 6·images elements of exterior orientation, 3 coordinates per new point and the unknown
+    coordinates of incomplete control (Z of a planimetric, X and Y of a height point). Also
+    returns the equations a set of control gives to the absolute orientation of a model (3 per
+    full, 2 per planimetric, 1 per height point; at least 7 are needed, §3.2.3).
+
+    Parameters
+    ----------
+    full, planimetric, height, new : int
+        Full (X, Y, Z), planimetric (X, Y), height (Z) control points and new points.
+    images : int
+        Number of images (2 in §3.2.2).
+
+    Returns
+    -------
+    dict
+        ``observations``, ``unknowns``, ``redundancy``, ``absolute_equations``.
+
+    Raises
+    ------
+    InputError
+        A negative or non-integer count, fewer than 2 images.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §3.2.2 (seed 002 lines 412–438), §3.2.3 (lines 446–452);
+    Chibunichev (2022), §3.5, eqs. (3.5.20)–(3.5.21) (the same counting for a bundle block).
+
+    Examples
+    --------
+    >>> orientation_counts(1, 2, 2, 5)      # Hanzl line 436: he prints 31 unknowns
+    {'observations': 40, 'unknowns': 33, 'redundancy': 7, 'absolute_equations': 9}
+    """
+    counts = {}
+    for name, value in (("full", full), ("planimetric", planimetric), ("height", height), ("new", new),
+                        ("images", images)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+            raise InputError(f"{name} must be a non-negative integer, got {value!r}")
+        counts[name] = int(value)
+    if counts["images"] < 2:
+        raise InputError(f"a joint orientation needs at least 2 images, got {counts['images']}")
+    n = counts["images"]
+    points = counts["full"] + counts["planimetric"] + counts["height"] + counts["new"]
+    observations = 2 * n * points
+    unknowns = 6 * n + 3 * counts["new"] + counts["planimetric"] + 2 * counts["height"]
+    return {"observations": observations, "unknowns": unknowns, "redundancy": observations - unknowns,
+            "absolute_equations": 3 * counts["full"] + 2 * counts["planimetric"] + counts["height"]}
+
+
+_HANZL_TO_RO = {"domega1": "omega1", "dphi1": "alpha1", "dkappa1": "kappa1", "domega2": "omega2",
+                "dphi2": "alpha2", "dkappa2": "kappa2", "db_y": "b_y", "db_z": "b_z"}
+
+
+def _parallax_state(p, system, r1, r2, c):
+    """Rectified image coordinates, depths h and the exact residual y-parallax at the elements ``p``.
+
+    The rays are turned into the model frame by R(ω, φ, κ) ("wak"); the two rays of a point are
+    intersected in the XZ plane of the model (base (1, b_y, b_z)), which gives h (depth below centre
+    1) and the Y of both rays at that depth; q = c·(Y₁ − Y₂)/h (zero when the rays meet).
+    """
+    v = dict.fromkeys(_ALL_RO, 0.0)
+    v.update(zip(RO_NAMES[system], p))
+    m1 = r1 @ rotation_matrix(v["omega1"], v["alpha1"], v["kappa1"], "wak").T
+    m2 = r2 @ rotation_matrix(v["omega2"], v["alpha2"], v["kappa2"], "wak").T
+    det = -m1[:, 0] * m2[:, 2] + m2[:, 0] * m1[:, 2]
+    if np.any(np.abs(det) <= 1e-12 * np.linalg.norm(m1, axis=1) * np.linalg.norm(m2, axis=1)):
+        raise DegenerateGeometryError("a pair of rays is parallel in the XZ plane of the model: no depth h")
+    lam1 = (-m2[:, 2] * 1.0 + m2[:, 0] * v["b_z"]) / det
+    lam2 = (-m1[:, 2] * 1.0 + m1[:, 0] * v["b_z"]) / det
+    h = -lam1 * m1[:, 2]
+    if np.any(h <= 0) or np.any(lam2 <= 0):
+        raise DegenerateGeometryError("the rays of some points meet above or behind the cameras (h ≤ 0): "
+                                      "the pair is not a near-vertical pair with the base along +x")
+    q = c * (lam1 * m1[:, 1] - v["b_y"] - lam2 * m2[:, 1]) / h
+    rect = (-c * m1[:, 0] / m1[:, 2], -c * m1[:, 1] / m1[:, 2], -c * m2[:, 0] / m2[:, 2], -c * m2[:, 1] / m2[:, 2])
+    return rect, h, q
+
+
+def relative_orientation_parallax(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
+                                  system: str = "dependent", iterate: bool = True, weights=None,
+                                  tol: float = 1e-12, max_iter: int = 30) -> RelativeOrientation:
+    """Relative orientation of a near-vertical pair from y-parallaxes, Hanzl §3.2.3.1 (Kraus's first-order form).
+
+    The y-parallax q = y₁ − y₂ of a point is, to first order in the orientation elements,
+    q = x₂dκ₂ − x₁dκ₁ + (c + y₂²/c)dω₂ − (c + y₁²/c)dω₁ − (x₂y₂/c)dφ₂ + (x₁y₁/c)dφ₁ + (c/h)db_y + (y₂/h)db_z
+    (line 510; the coefficients are derived by sympy, :func:`photolib.derivations.parallax.y_parallax_model`).
+    Five of the eight elements are solved by least squares (:func:`photolib.lsq.gauss_newton`):
+
+    * ``"independent"`` pair (line 516): dκ₁, dκ₂, dφ₁, dφ₂, dω₂ (rotations only; b_y = b_z = ω₁ = 0);
+    * ``"dependent"`` pair (line 520): dκ₂, dω₂, dφ₂, db_y, db_z (image 1 fixed).
+
+    With ``iterate=False`` the result is the book's single linear solution (first order, coefficients at
+    the measured coordinates). With ``iterate=True`` (default) the images are re-rectified with the current
+    elements after every step — the rays turned by R(ω, φ, κ), the exact remaining parallax
+    q = c(Y₁ − Y₂)/h measured where the rays meet in the model's XZ plane — and the first-order equations
+    solved again for the increments, until they vanish: the classical iteration of the optical-mechanical
+    instruments, which converges to the coplanar (rigorous) solution of :func:`relative_orientation`.
+
+    The text defines p_y = y₂ − y₁ (line 508) but its formula holds for y₁ − y₂ (erratum); here q = y₁ − y₂
+    throughout, as in Chibunichev §2.8. h, the depth of a point below centre 1 in units of b_x = 1, is taken
+    from the intersection of the rays in the XZ plane.
+
+    Parameters
+    ----------
+    xy1, xy2 : (n, 2) arrays
+        Corresponding image coordinates of n ≥ 5 points (mm), e.g. the six Gruber points (Fig. 3.3).
+    io1, io2 : InteriorOrientation
+        Interior orientation (``io2`` defaults to ``io1``); both images are rectified to c = f₁.
+    system : {"dependent", "independent"}
+        The five-element system (see above).
+    iterate : bool
+        Iterate to convergence (default) or return the first-order solution.
+    weights : array (n,), optional
+        Weights of the parallaxes (unit by default).
+    tol, max_iter
+        Convergence tolerance (rad and units of b_x) and iteration limit.
+
+    Returns
+    -------
+    RelativeOrientation
+        ``order="wak"`` (Hanzl's R = R_ω R_φ R_κ, φ ≡ α); b_y, b_z are db_y/b_x, db_z/b_x; ``q`` the exact
+        residual y-parallaxes (mm); ``adjustment`` μ (mm), m_j of the five elements in the order of
+        :data:`RO_NAMES`.
+
+    Raises
+    ------
+    InputError
+        Fewer than 5 points, wrong shapes or types, NaN/inf, an unknown system.
+    DegenerateGeometryError
+        Collinear points, rays that do not meet below the cameras (not a near-vertical pair with the base
+        along +x), a singular normal matrix (e.g. all points on one line of the model).
+    ConvergenceError
+        No convergence within ``max_iter`` (elements too large for the first-order equations).
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §3.2.3.1 (seed 002 lines 458–524); Kraus, Photogrammetry, vol. 1
+    (y-parallax form); Chibunichev (2022), §2.7–§2.8 (the rigorous coplanarity form).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from photolib.camera import InteriorOrientation
+    >>> xy1 = np.array([[0, 0], [90, 0], [0, 90], [90, 90], [0, -90], [90, -90]], float)
+    >>> xy2 = xy1 - [90.0, 0.0]                       # a normal-case pair of a flat model
+    >>> ro = relative_orientation_parallax(xy1, xy2, InteriorOrientation(150.0))
+    >>> bool(np.allclose([ro.b_y, ro.b_z, ro.omega2, ro.alpha2, ro.kappa2], 0, atol=1e-12))
+    True
+    """
+    if system not in RO_NAMES:
+        raise InputError(f"unknown system {system!r}; use 'dependent' or 'independent'")
+    io2 = io1 if io2 is None else io2
+    _check_type(io1, InteriorOrientation, "io1")
+    _check_type(io2, InteriorOrientation, "io2")
+    if not isinstance(iterate, (bool, np.bool_)):
+        raise InputError(f"iterate must be True or False, got {iterate!r}")
+    xy1 = as_points(xy1, 2, "image-1 coordinates")
+    xy2 = as_points(xy2, 2, "image-2 coordinates")
+    _same_length(xy1, xy2)
+    if len(xy1) < 5:
+        raise InputError(f"relative orientation needs at least 5 corresponding points, got {len(xy1)}")
+    _check_spread(xy1, "the points of image 1")
+    _check_spread(xy2, "the points of image 2")
+    c = float(io1.f)
+    r1, r2 = image_vector(xy1, io1), image_vector(xy2, io2)
+    model = _parallax.y_parallax_model(system)
+    _, jac_fn = model.compile()
+    hanzl = [str(s) for s in model.parameters]
+    perm = [hanzl.index(next(k for k, v in _HANZL_TO_RO.items() if v == name)) for name in RO_NAMES[system]]
+
+    def jacobian(rect, h):
+        J = np.asarray(jac_fn(*np.zeros(5), *rect, c, h, 0.0), dtype=float).reshape(5, -1).T
+        return J[:, perm]                                             # columns in the order of RO_NAMES
+
+    rect0, h0, q0 = _parallax_state(np.zeros(5), system, r1, r2, c)
+    if iterate:
+        def linearize(p):
+            rect, h, q = _parallax_state(p, system, r1, r2, c)
+            return jacobian(rect, h), -q
+    else:
+        J0 = jacobian(rect0, h0)
+
+        def linearize(p):
+            return J0, J0 @ p - q0                                     # v = Σ a·d − q (first order)
+    adj = gauss_newton(linearize, np.zeros(5), weights, tol=tol, max_iter=max_iter, names=RO_NAMES[system])
+    values = dict.fromkeys(_ALL_RO, 0.0)
+    values.update(zip(RO_NAMES[system], map(float, adj.x)))
+    _, h, q = _parallax_state(adj.x, system, r1, r2, c)
+    return RelativeOrientation(system, "wak", **values, q=q, adjustment=adj, base_sign=1.0,
+                               in_front=int(np.sum(h > 0)), n_points=len(xy1))
+
+
+def model_deformation(xm, ym, h, b, elements) -> np.ndarray:
+    """Height deformation dz of a model caused by errors of its relative orientation, Hanzl §3.2.3.2.
+
+    dz = (h/b)·p_x (corrected form of lines 544–548, derived by sympy in
+    :func:`photolib.derivations.parallax.deformation_coefficients`):
+    dz = −(h/b)db_x − ((x_m − b)/b)db_z − ((h² + x_m²)/b)dφ₁ + (x_m y_m/b)dω₁ − (h y_m/b)dκ₁
+    + ((h² + (x_m − b)²)/b)dφ₂ − ((x_m − b)y_m/b)dω₂ + (h y_m/b)dκ₂.
+    The book prints x_m²/b², (x_m − b)²/b² and the opposite signs of the dω₁, dκ₁ terms (errata).
+    Rigid motions do not deform the model: equal dκ₁ = dκ₂ give dz = 0, equal dω₁ = dω₂ give the tilt
+    dz = y_m·dω.
+
+    Parameters
+    ----------
+    xm, ym : float or array
+        Model coordinates of the points (origin at centre 1, x along the base), units of h and b.
+    h : float or array
+        Depth of the model below the projection centres (> 0).
+    b : float
+        Base (> 0).
+    elements : dict
+        Errors of the elements by name: ``db_x``, ``db_z`` (units of b), ``dphi1``, ``domega1``,
+        ``dkappa1``, ``dphi2``, ``domega2``, ``dkappa2`` (rad); missing ones are 0.
+
+    Returns
+    -------
+    ndarray or float
+        dz (units of h), broadcast over xm, ym, h.
+
+    Raises
+    ------
+    InputError
+        Unknown element names, NaN/inf, h or b ≤ 0, elements not a dict.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §3.2.3.2 (seed 002 lines 526–568), Fig. 3.4.
+
+    Examples
+    --------
+    >>> round(float(model_deformation(300.0, 200.0, 1500.0, 900.0, {"domega1": 1e-3, "domega2": 1e-3})), 12)
+    0.2
+    >>> float(model_deformation(300.0, 200.0, 1500.0, 900.0, {"dkappa1": 1e-3, "dkappa2": 1e-3}))
+    0.0
+    """
+    names = _parallax.DEFORMATION_ELEMENTS
+    if not isinstance(elements, dict):
+        raise InputError(f"elements must be a dict of element errors by name, got {type(elements).__name__}")
+    unknown = sorted(set(elements) - set(names))
+    if unknown:
+        raise InputError(f"unknown elements {unknown}; use {', '.join(names)}")
+    values = [float(_numbers(elements.get(n, 0.0), n)) for n in names]
+    xm, ym = _numbers(xm, "xm"), _numbers(ym, "ym")
+    h, b = _numbers(h, "h", positive=True), _numbers(b, "b", positive=True)
+    if b.ndim != 0:
+        raise InputError("b must be one number (the base)")
+    res, _ = _parallax.deformation_model().compile()
+    dz = np.asarray(res(*values, xm, ym, h, b), dtype=float)[0]
+    return float(dz) if dz.ndim == 0 else dz

@@ -70,7 +70,8 @@ __all__ = ["DLT_NAMES", "HOMOGRAPHY_NAMES", "LAYOUTS", "D_REFLECTION", "normaliz
            "essential_from_orientation", "fundamental_from_orientation", "fundamental_matrix",
            "essential_matrix", "essential_from_fundamental", "epipolar_residuals", "sampson_distance",
            "epipolar_lines", "essential_candidates", "decompose_essential", "relative_orientation_projective",
-           "ransac_fundamental", "apply_homography", "homography_dlt", "homography_lsq"]
+           "ransac_fundamental", "apply_homography", "homography_dlt", "homography_lsq",
+           "coplanarity_interior_matrix", "fundamental_coplanarity"]
 
 DLT_NAMES = tuple(f"L{i}" for i in range(1, 12))
 HOMOGRAPHY_NAMES = tuple(f"h{i}" for i in range(1, 9))
@@ -1031,6 +1032,104 @@ def fundamental_from_orientation(io1: InteriorOrientation, eo1: ExteriorOrientat
     E = essential_from_orientation(eo1, eo2)
     F = np.linalg.inv(calibration_matrix(io2)).T @ E @ np.linalg.inv(calibration_matrix(io1))
     return _layout(F / np.linalg.norm(F), layout)
+
+
+def coplanarity_interior_matrix(io: InteriorOrientation) -> np.ndarray:
+    """Hanzl's interior-orientation matrix C = [[1, 0, −x₀], [0, 1, −y₀], [0, 0, −c]] (§3.2.5).
+
+    C maps homogeneous image coordinates (x, y, 1) to the image vector (x − x₀, y − y₀, −c). The book
+    prints +x₀, +y₀ (line 608), which maps to (x + x₀, y + y₀, −c): an erratum.
+
+    Parameters
+    ----------
+    io : InteriorOrientation
+        c (= f), x₀, y₀ (mm).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        C.
+
+    Raises
+    ------
+    InputError
+        ``io`` not an InteriorOrientation.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §3.2.5 (seed 002 lines 604–612); Chibunichev (2022), §4.4 (K⁻¹ of (4.4.10)).
+
+    Examples
+    --------
+    >>> coplanarity_interior_matrix(InteriorOrientation(150.0, 0.01, -0.02)) @ [1.0, 2.0, 1.0]
+    array([   0.99,    2.02, -150.  ])
+    """
+    _check_type(io, InteriorOrientation, "io")
+    return np.array([[1.0, 0.0, -io.x0], [0.0, 1.0, -io.y0], [0.0, 0.0, -io.f]])
+
+
+def fundamental_coplanarity(io1: InteriorOrientation, R1, io2: InteriorOrientation, R2, base) -> np.ndarray:
+    """F = C₁ᵀR₁ᵀBR₂C₂ of Hanzl §3.2.5: [x₁ y₁ 1]·F·[x₂ y₂ 1]ᵀ = 0 (layout ``"x1Fx2"``).
+
+    From the coplanarity condition p₁ᵀ(b × p₂) = 0 with p_j = R_jC_j(x_j, y_j, 1)ᵀ and B = [b]ₓ
+    (:func:`skew_matrix`); C from :func:`coplanarity_interior_matrix` (with the corrected −x₀, −y₀).
+    Not normalised: the scale is that of the formula (compare up to scale with
+    :func:`fundamental_from_orientation` ``(…, layout="x1Fx2")``).
+
+    Parameters
+    ----------
+    io1, io2 : InteriorOrientation
+        Interior orientation of the images.
+    R1, R2 : (3, 3) arrays
+        Rotations image → model (object) frame.
+    base : 3-vector
+        b = S₂ − S₁ in the same frame (e.g. (1, 0, 0) for the independent pair).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        F, rank 2.
+
+    Raises
+    ------
+    InputError
+        Wrong types or shapes, NaN/inf, a matrix that is not a rotation.
+    DegenerateGeometryError
+        Zero base.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §3.2.5 (seed 002 lines 596–624); Chibunichev (2022), §4.4, eq. (4.4.10).
+
+    Examples
+    --------
+    >>> io = InteriorOrientation(100.0)
+    >>> F = fundamental_coplanarity(io, np.eye(3), io, np.eye(3), [1.0, 0.0, 0.0])
+    >>> F
+    array([[   0.,    0.,    0.],
+           [   0.,    0.,  100.],
+           [   0., -100.,    0.]])
+    >>> float(np.array([60.0, 10.0, 1.0]) @ F @ [20.0, 10.0, 1.0])   # same y: on the epipolar line
+    0.0
+    """
+    mats = []
+    for R, name in ((R1, "R1"), (R2, "R2")):
+        try:
+            R = np.asarray(R, dtype=float)
+        except (TypeError, ValueError):
+            raise InputError(f"{name} must be a 3×3 matrix of numbers") from None
+        if R.shape != (3, 3) or not np.all(np.isfinite(R)):
+            raise InputError(f"{name} must be a finite 3×3 matrix, got shape {R.shape}")
+        if not np.allclose(R.T @ R, np.eye(3), atol=1e-9) or np.linalg.det(R) < 0:
+            raise InputError(f"{name} is not a rotation matrix (RᵀR ≠ I or det < 0)")
+        mats.append(R)
+    b = as_points(base, 3, "base").reshape(-1)
+    if b.shape != (3,):
+        raise InputError("base must be one 3-vector")
+    if not np.linalg.norm(b) > 0:
+        raise DegenerateGeometryError("the base is zero: both projection centres coincide")
+    C1, C2 = coplanarity_interior_matrix(io1), coplanarity_interior_matrix(io2)
+    return C1.T @ mats[0].T @ skew_matrix(b) @ mats[1] @ C2
 
 
 def _eight_point(h1, h2, method: str, rank: str):
