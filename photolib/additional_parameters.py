@@ -25,6 +25,20 @@ point of an ideal one; under the other reading the roles swap. The Table B.1/Tab
 the appendix favours the correction reading (75.0″/83.4″ against the printed 75.8″/87.0″, the
 distortion reading gives 196.6″/123.2″).
 
+Hanzl's models (Hanzl, Fotogrammetrie, Modul 01, §4.4 and §5.4.1, seed 002 lines 759–982), kept
+apart in :data:`HANZL_MODELS` (the functions below accept both families):
+
+* ``"hanzl17"`` — Ebner's orthogonal set g₁…g₁₂ with **Hanzl's signs** (the standard Ebner 1976 set:
+  +g₅(y² − 2b²/3), −g₄(2y² − 4b²/3), unlike the thesis' (2)), the radial g₁₃…g₁₅ x(r² − r₀²),
+  x(r⁴ − r₀⁴), x(r⁶ − r₀⁶) (the OCR prints (r² − r₀²) three times, line 776: transcription) and the
+  tangential g₁₆, g₁₇. b = image base (92 mm for 23 cm and 60 % overlap), r₀ the radius of zero
+  radial distortion. :func:`hanzl17`.
+* ``"brown18"`` — Brown's 18 parameters a₁…a₁₈ (lines 966–968), in x, y and c. :func:`brown18`.
+* ``"murai"`` — Murai's K₁, K₂, P₁…P₆ (lines 970–972). :func:`murai`.
+
+Hanzl's dx, dy are corrections of the measured coordinates (the same reading as above). The ORIENT
+polynomial (lines 976–982) is garbled in the source and not implemented.
+
 For self-calibration (e.g. Ebner's set as an option of a bundle adjustment): :func:`ap_corrections`
 gives (dx, dy) for any model, :func:`parameter_names` its parameter names, :func:`ap_basis` the
 derivatives ∂σ/∂parameter (every model is linear in its parameters, so the basis is σ at the unit
@@ -43,8 +57,9 @@ from .camera import as_points
 from .errors import ConvergenceError, InputError
 from .rotation import _numbers
 
-__all__ = ["MODELS", "EBNER12_NAMES", "BROWN_NAMES", "PHOTOMOD_NAMES", "parameter_names", "ebner12", "brown",
-           "photomod", "ap_corrections", "ap_basis", "apply_ap", "invert_ap"]
+__all__ = ["MODELS", "HANZL_MODELS", "EBNER12_NAMES", "BROWN_NAMES", "PHOTOMOD_NAMES", "HANZL17_NAMES",
+           "BROWN18_NAMES", "MURAI_NAMES", "parameter_names", "ebner12", "brown", "photomod", "hanzl17", "brown18",
+           "murai", "ap_corrections", "ap_basis", "apply_ap", "invert_ap"]
 
 MODELS = ("ebner12", "brown", "photomod")
 """The AP models: (2), (3), (4)."""
@@ -59,12 +74,26 @@ BROWN_NAMES = (tuple(f"a{i}" for i in range(1, 8)) + tuple(f"b{i}" for i in rang
 PHOTOMOD_NAMES = ("k1", "k2", "k3", "P1", "P2", "a1", "a2", "b1", "b2")
 """Parameters of (4): k₁, k₂, k₃, P₁, P₂, a₁, a₂, b₁, b₂."""
 
-_NAMES = {"ebner12": EBNER12_NAMES, "brown": BROWN_NAMES, "photomod": PHOTOMOD_NAMES}
+HANZL_MODELS = ("hanzl17", "brown18", "murai")
+"""Hanzl's models: Ebner + radial + tangential (§4.4), Brown 18 and Murai (§5.4.1)."""
+
+HANZL17_NAMES = tuple(f"g{i}" for i in range(1, 18))
+"""g₁ … g₁₇ of §4.4: g₁…g₁₂ Ebner, g₁₃…g₁₅ radial, g₁₆, g₁₇ tangential."""
+
+BROWN18_NAMES = tuple(f"a{i}" for i in range(1, 19))
+"""a₁ … a₁₈ of Brown's model in §5.4.1."""
+
+MURAI_NAMES = ("K1", "K2", "P1", "P2", "P3", "P4", "P5", "P6")
+"""K₁, K₂, P₁ … P₆ of Murai's model in §5.4.1."""
+
+_NAMES = {"ebner12": EBNER12_NAMES, "brown": BROWN_NAMES, "photomod": PHOTOMOD_NAMES, "hanzl17": HANZL17_NAMES,
+          "brown18": BROWN18_NAMES, "murai": MURAI_NAMES}
+_ALL = MODELS + HANZL_MODELS
 
 
 def _model(model) -> str:
-    if not isinstance(model, str) or model not in MODELS:
-        raise InputError(f"unknown AP model {model!r}; use one of {', '.join(MODELS)}")
+    if not isinstance(model, str) or model not in _ALL:
+        raise InputError(f"unknown AP model {model!r}; use one of {', '.join(_ALL)}")
     return model
 
 
@@ -73,8 +102,8 @@ def parameter_names(model) -> tuple:
 
     Parameters
     ----------
-    model : {"ebner12", "brown", "photomod"}
-        (2), (3) or (4).
+    model : {"ebner12", "brown", "photomod", "hanzl17", "brown18", "murai"}
+        (2), (3), (4) or Hanzl's models.
 
     Returns
     -------
@@ -273,33 +302,197 @@ def photomod(xy, params) -> np.ndarray:
     return _photomod(p[:, 0], p[:, 1], _params("photomod", params))
 
 
+def _hanzl17(x, y, g, b, r0):
+    q = 2.0 * b * b / 3.0
+    X2, Y2 = x * x - q, y * y - q
+    r2 = x * x + y * y
+    rad = g[12] * (r2 - r0 ** 2) + g[13] * (r2 ** 2 - r0 ** 4) + g[14] * (r2 ** 3 - r0 ** 6)
+    dx = (g[0] * x + g[1] * y - g[2] * (2 * x * x - 2 * q) + g[3] * x * y + g[4] * Y2 + g[6] * x * Y2
+          + g[8] * y * X2 + g[10] * X2 * Y2 + x * rad + g[15] * (r2 + 2 * x * x) + g[16] * 2 * x * y)
+    dy = (-g[0] * y + g[1] * x + g[2] * x * y - g[3] * (2 * y * y - 2 * q) + g[5] * X2 + g[7] * y * X2
+          + g[9] * x * Y2 + g[11] * X2 * Y2 + y * rad + g[15] * 2 * x * y + g[16] * (r2 + 2 * y * y))
+    return np.column_stack([dx, dy])
+
+
+def hanzl17(xy, params, b, r0=0.0) -> np.ndarray:
+    """dx, dy of Hanzl's §4.4 set: Ebner's 12 orthogonal parameters, radial g₁₃…g₁₅, tangential g₁₆, g₁₇.
+
+    dx = g₁x + g₂y − g₃(2x² − 4b²/3) + g₄xy + g₅(y² − 2b²/3) + g₇x(y² − 2b²/3) + g₉y(x² − 2b²/3)
+    + g₁₁(x² − 2b²/3)(y² − 2b²/3) + x[g₁₃(r² − r₀²) + g₁₄(r⁴ − r₀⁴) + g₁₅(r⁶ − r₀⁶)] + g₁₆(r² + 2x²) + 2g₁₇xy;
+    dy = −g₁y + g₂x + g₃xy − g₄(2y² − 4b²/3) + g₆(x² − 2b²/3) + g₈y(x² − 2b²/3) + g₁₀x(y² − 2b²/3)
+    + g₁₂(x² − 2b²/3)(y² − 2b²/3) + y[…] + 2g₁₆xy + g₁₇(r² + 2y²).
+
+    The radial powers r⁴ − r₀⁴, r⁶ − r₀⁶ are our reading of the OCR, which prints (r² − r₀²) for all
+    three terms (line 776; identical terms could not be separate unknowns).
+
+    Parameters
+    ----------
+    xy : (n, 2) array
+        Image coordinates relative to the image centre (the centre of Ebner's 3 × 3 grid).
+    params : sequence of 17 numbers or mapping
+        g₁ … g₁₇ (:data:`HANZL17_NAMES`; a mapping may omit parameters, which are then 0).
+    b : float
+        Image base (grid spacing x, y ∈ {−b, 0, b}), > 0: 92 mm for a 23 cm format at 60 % overlap.
+    r0 : float
+        Radius of zero radial distortion, ≥ 0.
+
+    Returns
+    -------
+    (n, 2) ndarray
+        dx, dy.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf, unknown parameter names, b ≤ 0, r0 < 0.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §4.4 (seed 002 lines 759–796); H. Ebner (1976); Chibunichev §3.6.
+
+    Examples
+    --------
+    >>> hanzl17([[92.0, 0.0]], {"g1": 1e-5}, b=92.0)
+    array([[0.00092, 0.     ]])
+    """
+    p = _xy(xy)
+    g = _params("hanzl17", params)
+    (b, r0), _ = _extras("hanzl17", b, None, r0)
+    return _hanzl17(p[:, 0], p[:, 1], g, b, r0)
+
+
+def _brown18(x, y, a, c):
+    a = np.concatenate([[0.0], a])
+    r2 = x * x + y * y
+    common = a[13] * (x * x - y * y) + a[14] * x * x * y * y + a[15] * (x ** 4 - y ** 4)
+    rad = a[16] * r2 + a[17] * r2 ** 2 + a[18] * r2 ** 3
+    dx = (a[1] * x + a[2] * y + a[3] * x * y + a[4] * y * y + a[5] * x * x * y + a[6] * x * y * y
+          + a[7] * x * x * y * y + x / c * common + x * rad)
+    dy = (a[8] * x * y + a[9] * x * x + a[10] * x * x * y + a[11] * x * y * y + a[12] * x * x * y * y
+          + y / c * common + y * rad)
+    return np.column_stack([dx, dy])
+
+
+def brown18(xy, params, c) -> np.ndarray:
+    """dx, dy of Brown's 18-parameter model as printed by Hanzl (§5.4.1).
+
+    dx = a₁x + a₂y + a₃xy + a₄y² + a₅x²y + a₆xy² + a₇x²y² + (x/c)(a₁₃(x² − y²) + a₁₄x²y² + a₁₅(x⁴ − y⁴))
+    + x(a₁₆r² + a₁₇r⁴ + a₁₈r⁶); dy = a₈xy + a₉x² + a₁₀x²y + a₁₁xy² + a₁₂x²y² + (y/c)(…) + y(…).
+
+    Parameters
+    ----------
+    xy : (n, 2) array
+        Image coordinates reduced to the principal point.
+    params : sequence of 18 numbers or mapping
+        a₁ … a₁₈ (:data:`BROWN18_NAMES`).
+    c : float
+        Camera constant (unit of xy), > 0.
+
+    Returns
+    -------
+    (n, 2) ndarray
+        dx, dy.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf, unknown parameter names, c ≤ 0.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §5.4.1 (seed 002 lines 966–968), after D.C. Brown (1976).
+
+    Examples
+    --------
+    >>> brown18([[2.0, 1.0]], {"a3": 0.5, "a9": 0.25}, c=50.0)
+    array([[1., 1.]])
+    """
+    p = _xy(xy)
+    a = _params("brown18", params)
+    _, c = _extras("brown18", None, c)
+    return _brown18(p[:, 0], p[:, 1], a, c)
+
+
+def _murai(x, y, q):
+    K1, K2, P1, P2, P3, P4, P5, P6 = q
+    r2 = x * x + y * y
+    rad = K1 * r2 + K2 * r2 ** 2
+    return np.column_stack([x * rad + P1 * x + P2 * y + P3 * x * y + P4 * y * y, y * rad + P5 * x * y + P6 * x * x])
+
+
+def murai(xy, params) -> np.ndarray:
+    """dx, dy of Murai's model as printed by Hanzl (§5.4.1).
+
+    dx = x(K₁r² + K₂r⁴) + (P₁x + P₂y + P₃xy + P₄y²), dy = y(K₁r² + K₂r⁴) + (P₅xy + P₆x²).
+
+    Parameters
+    ----------
+    xy : (n, 2) array
+        Image coordinates reduced to the principal point.
+    params : sequence of 8 numbers or mapping
+        K₁, K₂, P₁ … P₆ (:data:`MURAI_NAMES`).
+
+    Returns
+    -------
+    (n, 2) ndarray
+        dx, dy.
+
+    Raises
+    ------
+    InputError
+        Bad shapes, NaN/inf, unknown parameter names.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §5.4.1 (seed 002 lines 970–972).
+
+    Examples
+    --------
+    >>> murai([[1.0, 1.0]], {"K1": 0.5, "P6": 1.0})
+    array([[1., 2.]])
+    """
+    p = _xy(xy)
+    return _murai(p[:, 0], p[:, 1], _params("murai", params))
+
+
 def _evaluate(model, p, q, b, f):
     if model == "ebner12":
         return _ebner(p[:, 0], p[:, 1], q, b)
     if model == "brown":
         return _brown(p[:, 0], p[:, 1], q, f)
+    if model == "hanzl17":
+        return _hanzl17(p[:, 0], p[:, 1], q, b[0], b[1])
+    if model == "brown18":
+        return _brown18(p[:, 0], p[:, 1], q, f)
+    if model == "murai":
+        return _murai(p[:, 0], p[:, 1], q)
     return _photomod(p[:, 0], p[:, 1], q)
 
 
-def _extras(model, b, f):
-    if model == "ebner12":
+def _extras(model, b, f, r0=None):
+    if model in ("ebner12", "hanzl17"):
         if b is None:
-            raise InputError("ebner12 needs b, the spacing of the 3 × 3 grid of standard points")
-        return _checks.number(b, "b", positive=True), None
-    if model == "brown":
+            raise InputError(f"{model} needs b, the spacing of the 3 × 3 grid of standard points (the image base)")
+        b = _checks.number(b, "b", positive=True)
+        if model == "hanzl17":
+            if r0 is None:
+                raise InputError("hanzl17 needs r0, the radius of zero radial distortion (0 allowed)")
+            return (b, _checks.number(r0, "r0", positive=True, allow_zero=True)), None
+        return b, None
+    if model in ("brown", "brown18"):
         if f is None:
-            raise InputError("brown needs f, the principal distance (the c terms are scaled by x/f, y/f)")
+            raise InputError(f"{model} needs f, the principal distance (terms scaled by x/f, y/f)")
         return None, _checks.number(f, "f", positive=True)
     return None, None
 
 
-def ap_corrections(model, xy, params, *, b=None, f=None) -> np.ndarray:
+def ap_corrections(model, xy, params, *, b=None, f=None, r0=None) -> np.ndarray:
     """σx, σy of any AP model at the given coordinates — the one entry point for self-calibration.
 
     Parameters
     ----------
-    model : {"ebner12", "brown", "photomod"}
-        (2), (3) or (4).
+    model : {"ebner12", "brown", "photomod", "hanzl17", "brown18", "murai"}
+        (2), (3), (4) or Hanzl's models.
     xy : (n, 2) array
         Image coordinates (see the model's function for their origin).
     params : sequence or mapping
@@ -307,7 +500,9 @@ def ap_corrections(model, xy, params, *, b=None, f=None) -> np.ndarray:
     b : float, optional
         Grid spacing, required by ``"ebner12"``.
     f : float, optional
-        Principal distance, required by ``"brown"``.
+        Principal distance, required by ``"brown"`` and ``"brown18"`` (Hanzl's c).
+    r0 : float, optional
+        Radius of zero radial distortion, required by ``"hanzl17"`` (≥ 0).
 
     Returns
     -------
@@ -331,11 +526,11 @@ def ap_corrections(model, xy, params, *, b=None, f=None) -> np.ndarray:
     model = _model(model)
     p = _xy(xy)
     q = _params(model, params)
-    b, f = _extras(model, b, f)
+    b, f = _extras(model, b, f, r0)
     return _evaluate(model, p, q, b, f)
 
 
-def ap_basis(model, xy, *, b=None, f=None) -> np.ndarray:
+def ap_basis(model, xy, *, b=None, f=None, r0=None) -> np.ndarray:
     """∂(σx, σy)/∂parameters: the columns of the AP part of the design matrix.
 
     Each model is linear in its parameters, so column j is σ evaluated with parameter j = 1 and the
@@ -343,11 +538,11 @@ def ap_basis(model, xy, *, b=None, f=None) -> np.ndarray:
 
     Parameters
     ----------
-    model : {"ebner12", "brown", "photomod"}
-        (2), (3) or (4).
+    model : {"ebner12", "brown", "photomod", "hanzl17", "brown18", "murai"}
+        (2), (3), (4) or Hanzl's models.
     xy : (n, 2) array
         Image coordinates.
-    b, f : float, optional
+    b, f, r0 : float, optional
         As for :func:`ap_corrections`.
 
     Returns
@@ -372,12 +567,12 @@ def ap_basis(model, xy, *, b=None, f=None) -> np.ndarray:
     """
     model = _model(model)
     p = _xy(xy)
-    b, f = _extras(model, b, f)
+    b, f = _extras(model, b, f, r0)
     eye = np.eye(len(_NAMES[model]))
     return np.stack([_evaluate(model, p, e, b, f) for e in eye], axis=-1)
 
 
-def apply_ap(model, xy, params, *, b=None, f=None) -> np.ndarray:
+def apply_ap(model, xy, params, *, b=None, f=None, r0=None) -> np.ndarray:
     """xy + σ(xy): the coordinates with the AP corrections added at the coordinates themselves.
 
     Under the correction reading (measured coordinates reduced to the principal point, as in
@@ -385,13 +580,13 @@ def apply_ap(model, xy, params, *, b=None, f=None) -> np.ndarray:
 
     Parameters
     ----------
-    model : {"ebner12", "brown", "photomod"}
-        (2), (3) or (4).
+    model : {"ebner12", "brown", "photomod", "hanzl17", "brown18", "murai"}
+        (2), (3), (4) or Hanzl's models.
     xy : (n, 2) array
         Image coordinates.
     params : sequence or mapping
         The parameters.
-    b, f : float, optional
+    b, f, r0 : float, optional
         As for :func:`ap_corrections`.
 
     Returns
@@ -413,10 +608,10 @@ def apply_ap(model, xy, params, *, b=None, f=None) -> np.ndarray:
     array([[1010.,    0.]])
     """
     p = _xy(xy)
-    return p + ap_corrections(model, p, params, b=b, f=f)
+    return p + ap_corrections(model, p, params, b=b, f=f, r0=r0)
 
 
-def invert_ap(model, xy, params, *, b=None, f=None, tol: float = 1e-10, max_iter: int = 100) -> np.ndarray:
+def invert_ap(model, xy, params, *, b=None, f=None, r0=None, tol: float = 1e-10, max_iter: int = 100) -> np.ndarray:
     """Solve u + σ(u) = xy for u by the fixed-point iteration u ← xy − σ(u) (the inverse of :func:`apply_ap`).
 
     Under the correction reading this gives the measured (distorted) point of an ideal one; under
@@ -425,13 +620,13 @@ def invert_ap(model, xy, params, *, b=None, f=None, tol: float = 1e-10, max_iter
 
     Parameters
     ----------
-    model : {"ebner12", "brown", "photomod"}
-        (2), (3) or (4).
+    model : {"ebner12", "brown", "photomod", "hanzl17", "brown18", "murai"}
+        (2), (3), (4) or Hanzl's models.
     xy : (n, 2) array
         The coordinates to invert.
     params : sequence or mapping
         The parameters.
-    b, f : float, optional
+    b, f, r0 : float, optional
         As for :func:`ap_corrections`.
     tol : float
         Stop when the largest change is below tol·max(1, max|xy|).
@@ -464,7 +659,7 @@ def invert_ap(model, xy, params, *, b=None, f=None, tol: float = 1e-10, max_iter
     model = _model(model)
     v = _xy(xy)
     q = _params(model, params)
-    b, f = _extras(model, b, f)
+    b, f = _extras(model, b, f, r0)
     tol = _checks.number(tol, "tol", positive=True)
     max_iter = _checks.integer(max_iter, "max_iter", 1)
     scale = max(1.0, float(np.max(np.abs(v))) if v.size else 1.0)

@@ -66,6 +66,8 @@ __all__ = ["BundleResult", "CheckPointStatistics", "bundle_adjustment", "bundle_
            # §3.6 self-calibration
            "IO_NAMES", "DISTORTION_NAMES", "CorrelationReport", "SelfCalibrationResult",
            "self_calibrating_bundle_adjustment", "self_calibration_correction_equations",
+           # Hanzl §4.4 additional parameters
+           "APTestReport", "additional_parameter_tests", "select_additional_parameters",
            # §3.8 rigs
            "MOUNT_NAMES", "RigResult", "rig_image_orientation", "rig_bundle_adjustment",
            "rig_design_matrix",
@@ -1394,6 +1396,48 @@ class SelfCalibrationResult(BundleResult):
     calibrated: tuple = ()                        # names of the estimated block-wide unknowns
     io_std: dict = field(default_factory=dict)    # m_j (3.5.11) of each, mm / mm⁻ⁿ
     correlations: CorrelationReport | None = None
+    ap_model: str | None = None                   # additional-parameter model (Hanzl §4.4), if any
+    ap_values: dict = field(default_factory=dict)  # its adjusted parameters g_i
+    ap_cofactors: np.ndarray | None = None        # Q_gg of the APs (σ_g = μ √q_ii)
+
+
+@dataclass(frozen=True)
+class _APSetup:
+    model: str
+    names: tuple
+    index: tuple
+    kwargs: dict
+    tolerances: tuple
+
+    def basis(self, xy):
+        from . import additional_parameters as apm
+        return apm.ap_basis(self.model, xy, **self.kwargs)[:, :, list(self.index)]
+
+
+def _ap_setup(model, names, base, r0, io0):
+    if model is None:
+        if names is not None or base is not None or r0 is not None:
+            raise InputError("ap_names, ap_base and ap_r0 need additional_parameters= (the AP model)")
+        return None
+    from . import additional_parameters as apm
+    all_names = apm.parameter_names(model)
+    names = all_names if names is None else tuple(names)
+    bad = [nm for nm in names if nm not in all_names]
+    if bad or len(set(names)) != len(names) or not names:
+        raise InputError(f"ap_names: choose distinct names among {all_names}, got {names}")
+    kwargs = {}
+    if model in ("ebner12", "hanzl17"):
+        if base is None:
+            raise InputError(f"{model} needs ap_base, the image base b (e.g. 92 mm for 23 cm and 60 % overlap)")
+        kwargs["b"] = base
+    if model == "hanzl17":
+        kwargs["r0"] = 0.0 if r0 is None else r0
+    if model in ("brown", "brown18"):
+        if not isinstance(io0, InteriorOrientation):
+            raise InputError("io0 must be an InteriorOrientation (start values of the calibration)")
+        kwargs["f"] = io0.f
+    apm.ap_basis(model, np.zeros((1, 2)), **kwargs)          # validates b, r0, f
+    return _APSetup(model, names, tuple(all_names.index(nm) for nm in names), kwargs, ())
 
 
 def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: InteriorOrientation, *,
@@ -1402,6 +1446,7 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
                                        conditions=None, sigma_image: float = 0.005, order: str = "kaw",
                                        max_iter: int = 30, tol_centre: float = 1e-5, tol_angle: float = 1e-9,
                                        tol_point: float = 1e-5, correlation_limit: float = 0.9,
+                                       additional_parameters=None, ap_names=None, ap_base=None, ap_r0=None,
                                        **legacy) -> SelfCalibrationResult:
     """Bundle adjustment with self-calibration, §3.6: (3.6.1)–(3.6.3).
 
@@ -1427,6 +1472,19 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
         by the dense path of the engine, the block-wide unknowns as columns after the images).
     correlation_limit : float
         |r| above which :attr:`CorrelationReport.high` flags a pair.
+    additional_parameters : str, optional
+        A model of :mod:`photolib.additional_parameters` (e.g. ``"hanzl17"``: Ebner's twelve
+        orthogonal parameters with Hanzl's radial g₁₃…g₁₅ and tangential g₁₆, g₁₇, §4.4 of Hanzl's text;
+        ``"ebner12"``, ``"brown18"``, ``"murai"``, ...). Its parameters become further block-wide unknowns
+        (start 0) after those of ``calibrate``; the correction dx, dy is *added to the measured
+        coordinates*, evaluated at them (relative to the image centre), so the equations are linear in
+        the parameters and their columns are −:func:`~photolib.additional_parameters.ap_basis`.
+        ``calibrate`` may then be empty (``()``): the APs alone.
+    ap_names : sequence of str, optional
+        The subset of the model's parameters to estimate (default all), e.g. g1…g12 for Ebner's set.
+    ap_base, ap_r0 : float, optional
+        The model's b (Ebner's image base, e.g. 92 mm) and r₀ (hanzl17); the c of ``"brown"`` and
+        ``"brown18"`` is ``io0.f``.
 
     Raises
     ------
@@ -1461,7 +1519,8 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
     sigma_io, sigma_control, sigma_centre, sigma_angles = _renamed(
         legacy, "self_calibrating_bundle_adjustment", sigma_io=sigma_io, sigma_control=sigma_control,
         sigma_centre=sigma_centre, sigma_angles=sigma_angles)
-    names = _check_calibrate(calibrate)
+    ap = _ap_setup(additional_parameters, ap_names, ap_base, ap_r0, io0)
+    names = _check_calibrate(calibrate) if (ap is None or tuple(calibrate)) else ()
     if not isinstance(io0, InteriorOrientation):
         raise InputError("io0 must be an InteriorOrientation (start values of the calibration)")
     if not 0 < correlation_limit < 1:
@@ -1471,6 +1530,13 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
     full = _io_vector(io0)
     cols = [IO_NAMES.index(nm) for nm in names]
     g0 = full[cols]
+    n_io = len(names)
+    if ap is not None:
+        ap_cols_all = -ap.basis(b.xy)                                  # (m, 2, p): ∂L/∂g, constant
+        # stop when a step moves no image point by more than 1e-7 (mm)
+        ap_tol = [1e-7 / max(float(np.abs(ap_cols_all[:, :, j]).max()), 1e-300) for j in range(len(ap.names))]
+        names = names + ap.names
+        g0 = np.concatenate([g0, np.zeros(len(ap.names))])
     gobs = None
     if sigma_io:
         vals, wts = np.full(len(names), np.nan), np.zeros(len(names))
@@ -1485,11 +1551,18 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
 
     def linearize(frames, points, glob):
         v = full.copy()
-        v[cols] = glob
-        return self_calibration_correction_equations(b.image, b.point, b.xy, frames, points, v, names, order)
+        v[cols] = glob[:n_io]
+        eq = self_calibration_correction_equations(b.image, b.point, b.xy, frames, points, v,
+                                                   names[:n_io] or ("f",), order)
+        if ap is None:
+            return eq
+        B3 = np.concatenate([eq.B3[:, :, :n_io], ap_cols_all], axis=2)
+        L = eq.L + np.einsum("mcp,p->mc", ap_cols_all, glob[n_io:])
+        return GlobalBlockCorrectionEquations(frame=eq.frame, point=eq.point, B1=eq.B1, B2=eq.B2, L=L, P=1.0, B3=B3)
 
     tol_g = np.array([1e-7 if nm in ("f", "x0", "y0") else 1e-6 * (0.1 ** (2 * (IO_NAMES.index(nm) - 2)))
-                      if nm.startswith("k") else 1e-10 for nm in names])
+                      if nm.startswith("k") else 1e-10 for nm in names[:n_io]]
+                     + ([] if ap is None else ap_tol))
     try:
         if b.conditions:
             adj = _dense_block_adjustment(b, linearize, g0, gobs, b.conditions, sigma_image,
@@ -1504,7 +1577,7 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
     except PointBehindCameraError as exc:
         raise ConvergenceError(f"the iteration diverged: {exc}") from exc
     v = full.copy()
-    v[cols] = adj.globals
+    v[cols] = adj.globals[:n_io]
     io = InteriorOrientation(*v)
     n, k = b.n, b.k
     fr = adj.frame_residuals if b.frame_obs is not None else np.zeros((n, 6))
@@ -1516,7 +1589,189 @@ def self_calibrating_bundle_adjustment(observations, cameras0, points0, io0: Int
         gnss_residuals=fr[:, :3] if gnss is not None else zeros3, ins_residuals=fr[:, 3:] if ins is not None else zeros3,
         iterations=adj.iterations, history=adj.history, order=order, io=io, calibrated=names,
         io_std=dict(zip(names, adj.globals_std)), correlations=_correlation_report(adj, names, correlation_limit),
-        condition_residuals=getattr(adj, "condition_residuals", np.zeros(0)))
+        condition_residuals=getattr(adj, "condition_residuals", np.zeros(0)),
+        ap_model=None if ap is None else ap.model,
+        ap_values={} if ap is None else dict(zip(ap.names, adj.globals[n_io:].tolist())),
+        ap_cofactors=None if ap is None else np.array(adj.Q3)[n_io:, n_io:])
+
+
+@dataclass
+class APTestReport:
+    """Statistical tests of the additional parameters of a self-calibrating bundle (Hanzl §4.4).
+
+    Attributes
+    ----------
+    names : tuple of str
+        The estimated additional parameters.
+    values, std : ndarray
+        g_i and σ₀√q_ii (σ₀ = the adjustment's μ).
+    t : ndarray
+        t_i = g_i / (σ₀√q_ii).
+    quantile : float
+        Two-sided Student quantile t_{1−α/2}(dof).
+    significant : ndarray of bool
+        |t_i| > quantile.
+    correlated : list of (str, str, float)
+        Pairs with |r_ij| = |q_ij|/√(q_ii q_jj) above the limit.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §4.4 (seed 002 lines 788–794); Chibunichev §3.6.
+
+    Examples
+    --------
+    >>> rep = APTestReport(("g1",), np.array([2.0]), np.array([1.0]), np.array([2.0]), 1.96,
+    ...                    np.array([True]), [])
+    >>> rep.insignificant()
+    ()
+    """
+
+    names: tuple
+    values: np.ndarray
+    std: np.ndarray
+    t: np.ndarray
+    quantile: float
+    significant: np.ndarray
+    correlated: list
+
+    def insignificant(self) -> tuple:
+        """Names of the parameters whose |t| does not exceed the quantile."""
+        return tuple(nm for nm, ok in zip(self.names, self.significant) if not ok)
+
+
+def additional_parameter_tests(result: SelfCalibrationResult, *, alpha: float = 0.05,
+                               correlation_limit: float = 0.9) -> APTestReport:
+    """Significance t-test and correlation test of the additional parameters (Hanzl §4.4).
+
+    t_i = g_i/(σ₀√q_ii) is compared with the two-sided quantile of Student's t with the
+    adjustment's degrees of freedom (null hypothesis: g_i is not significant); pairs with
+    r_ij = q_ij/√(q_ii q_jj) above ``correlation_limit`` (0.9 in the text) are listed.
+
+    Parameters
+    ----------
+    result : SelfCalibrationResult
+        Of :func:`self_calibrating_bundle_adjustment` with ``additional_parameters``.
+    alpha : float
+        Significance level, in (0, 1) (0.05: the 95 % of the text).
+    correlation_limit : float
+        In (0, 1).
+
+    Returns
+    -------
+    APTestReport
+
+    Raises
+    ------
+    InputError
+        A result without additional parameters; α or the limit outside (0, 1).
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §4.4, r_ij and t_i (seed 002 lines 788–794); Chibunichev §3.6.
+
+    Examples
+    --------
+    >>> from photolib import synthetic
+    >>> from photolib.camera import InteriorOrientation
+    >>> blk = synthetic.aerial_block(2, 4, points_per_image=20, sigma=0.002, seed=1)
+    >>> cams0, pts0 = blk.start_values(seed=2)
+    >>> res = self_calibrating_bundle_adjustment(blk.observations, cams0, pts0, blk.io, calibrate=(),
+    ...     additional_parameters="hanzl17", ap_names=("g1", "g2"), ap_base=40.0,
+    ...     control={int(i): blk.points[i] for i in blk.control}, order=blk.order)
+    >>> additional_parameter_tests(res).names
+    ('g1', 'g2')
+    """
+    if not isinstance(result, SelfCalibrationResult) or not result.ap_values:
+        raise InputError("additional_parameter_tests needs a self-calibration result with additional_parameters")
+    if not 0 < alpha < 1 or not 0 < correlation_limit < 1:
+        raise InputError("alpha and correlation_limit must lie in (0, 1)")
+    from scipy.special import stdtrit
+
+    names = tuple(result.ap_values)
+    g = np.array([result.ap_values[nm] for nm in names])
+    Q = np.asarray(result.ap_cofactors, dtype=float)
+    q = np.diag(Q)
+    std = result.mu * np.sqrt(q)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(std > 0, g / std, np.inf)
+    quant = float(stdtrit(max(int(result.dof), 1), 1 - alpha / 2))
+    r = Q / np.sqrt(np.outer(q, q))
+    pairs = [(names[i], names[j], float(r[i, j])) for i in range(len(names)) for j in range(i + 1, len(names))
+             if abs(r[i, j]) > correlation_limit]
+    return APTestReport(names, g, std, t, quant, np.abs(t) > quant, pairs)
+
+
+def select_additional_parameters(observations, cameras0, points0, io0: InteriorOrientation, *,
+                                 additional_parameters, ap_names=None, alpha: float = 0.05,
+                                 correlation_limit: float = 0.9, **kwargs) -> tuple:
+    """Self-calibration with additional parameters, eliminated step by step (Hanzl §4.4).
+
+    Start with all the given parameters; while a pair correlates above ``correlation_limit``, drop
+    the member with the smaller |t|; then drop the least significant parameter while its |t| is
+    below the quantile, re-adjusting after each removal (the text: start with more parameters and
+    eliminate them by statistical tests).
+
+    Parameters
+    ----------
+    observations, cameras0, points0, io0
+        As in :func:`self_calibrating_bundle_adjustment`.
+    additional_parameters : str
+        The AP model.
+    ap_names : sequence of str, optional
+        The candidate parameters (default all of the model).
+    alpha, correlation_limit : float
+        As in :func:`additional_parameter_tests`.
+    **kwargs
+        Passed to :func:`self_calibrating_bundle_adjustment` (``ap_base``, ``calibrate``, ``control``, ...).
+
+    Returns
+    -------
+    (SelfCalibrationResult, list of (str, str))
+        The final adjustment and the removals in order as (name, reason), reason
+        ``"correlation"`` or ``"t-test"``. If every parameter is removed the result is that of the
+        last adjustment that still had one and the list says so.
+
+    Raises
+    ------
+    InputError
+        As :func:`self_calibrating_bundle_adjustment` / :func:`additional_parameter_tests`.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §4.4 (seed 002 lines 786–796); Chibunichev §3.6.
+
+    Examples
+    --------
+    >>> from photolib import synthetic
+    >>> blk = synthetic.aerial_block(2, 4, points_per_image=20, sigma=0.002, seed=1)
+    >>> cams0, pts0 = blk.start_values(seed=2)
+    >>> res, removed = select_additional_parameters(blk.observations, cams0, pts0, blk.io, calibrate=(),
+    ...     additional_parameters="hanzl17", ap_names=("g1", "g2"), ap_base=40.0,
+    ...     control={int(i): blk.points[i] for i in blk.control}, order=blk.order)
+    >>> len(removed) >= 1                     # no deformation was simulated
+    True
+    """
+    from . import additional_parameters as apm
+
+    current = list(apm.parameter_names(additional_parameters) if ap_names is None else ap_names)
+    removed = []
+    while True:
+        res = self_calibrating_bundle_adjustment(observations, cameras0, points0, io0,
+                                                 additional_parameters=additional_parameters, ap_names=current,
+                                                 correlation_limit=correlation_limit, **kwargs)
+        rep = additional_parameter_tests(res, alpha=alpha, correlation_limit=correlation_limit)
+        tabs = dict(zip(rep.names, np.abs(rep.t)))
+        if rep.correlated:
+            a, b_, _ = max(rep.correlated, key=lambda p: abs(p[2]))
+            drop, why = (a if tabs[a] < tabs[b_] else b_), "correlation"
+        elif rep.insignificant():
+            drop, why = min(rep.insignificant(), key=tabs.get), "t-test"
+        else:
+            return res, removed
+        removed.append((drop, why))
+        if len(current) == 1:
+            return res, removed
+        current.remove(drop)
 
 
 # --- §3.8 multi-camera rigs ----------------------------------------------------------------------

@@ -22,6 +22,11 @@
 * §11.9 three-view matching of targets by epipolar lines (:func:`match_three_views`) and the
   probe tip from its intersected marks (:func:`probe_tip`).
 
+Hanzl, Fotogrammetrie, Modul 01, §5.4 (seed 002 lines 921–946): the empirical accuracy of
+multi-station close-range photogrammetry σ_p = q σ_x m_s/√k (:func:`close_range_point_sigma`) and the
+relative redundancy r̄ (:func:`relative_redundancy`; the text prints r/n, the mean redundancy
+number is r/m).
+
 Units: image coordinates and f in mm (or all in pixels — only ratios matter in §11.8), object
 coordinates in m, angles in radians. The aerial normal case of Chapter 2 (base along X, depth
 along −Z) is reused: the terrestrial frame has depth along +Y and height along Z.
@@ -46,7 +51,7 @@ __all__ = ["CASES", "BaseSystem", "base_system", "case_rotation", "case_orientat
            "base_intersection", "normal_case_accuracy", "normal_case_monte_carlo", "StereoDesign",
            "stereo_design", "condition_equations", "polar_project", "orientation_from_directions",
            "ModelLink", "link_models_linear", "link_models_svd", "chain_rotation", "centre_in_object",
-           "match_three_views", "probe_tip"]
+           "match_three_views", "probe_tip", "close_range_point_sigma", "relative_redundancy"]
 
 CASES = ("normal", "deviated", "tilted", "convergent")
 """The standard cases of terrestrial stereo photography (§11.5)."""
@@ -1117,3 +1122,92 @@ def probe_tip(xy_list, eo_list, io, marks_probe, tip_probe) -> tuple:
     A = T.matrix
     shift = r.points.mean(axis=0) - A @ marks.mean(axis=0)               # rigid: scale 1
     return shift + A @ tip, r.points
+
+
+def close_range_point_sigma(q: float, sigma_x: float, scale_number: float, k: float = 1.0) -> float:
+    """Empirical mean point error of close-range photogrammetry, σ_p = q σ_x m_s/√k (Hanzl §5.4).
+
+    σ_p = √(σ_X² + σ_Y² + σ_Z²) is the expected mean position error; q the configuration factor
+    (0.4–0.7 for convergent multi-station networks, 1.5–2.0 for the normal case), σ_x the image
+    coordinate error, m_s the mean scale number (distance / camera constant) and k the mean
+    number of images taken from one station.
+
+    Parameters
+    ----------
+    q : float
+        Configuration factor, > 0.
+    sigma_x : float
+        Image coordinate error (any unit; σ_p comes out in the same unit), > 0.
+    scale_number : float
+        m_s, > 0.
+    k : float
+        Images per station, ≥ 1.
+
+    Returns
+    -------
+    float
+        σ_p, in the unit of ``sigma_x``.
+
+    Raises
+    ------
+    InputError
+        Non-finite or non-positive arguments, k < 1.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §5.4 (seed 002 lines 921–931); Chibunichev §11.8 (accuracy
+    of the normal case).
+
+    Examples
+    --------
+    >>> round(close_range_point_sigma(0.7, 0.005, 20000 / 50, k=2), 4)      # mm: Example 1
+    0.9899
+    """
+    q = _checks.number(q, "q", positive=True)
+    s = _checks.number(sigma_x, "sigma_x", positive=True)
+    m = _checks.number(scale_number, "scale_number", positive=True)
+    k = _checks.number(k, "k", positive=True)
+    if k < 1:
+        raise InputError(f"k (images per station) must be at least 1, got {k!r}")
+    return q * s * m / float(np.sqrt(k))
+
+
+def relative_redundancy(redundancy_numbers) -> float:
+    """Relative redundancy r̄ = r/m, the mean of the redundancy numbers r_i = (Q_vv P)_ii (Hanzl §5.4).
+
+    Hanzl prints r̄ = r/n with n the number of unknowns (line 946); a share that lies in [0, 1] and
+    is required to be ≥ 0.6 must be the mean r_i, i.e. r divided by the number of observations m.
+
+    Parameters
+    ----------
+    redundancy_numbers : array_like (m,)
+        r_i of every observation, each in [0, 1] (up to rounding).
+
+    Returns
+    -------
+    float
+        r̄ = Σ r_i / m.
+
+    Raises
+    ------
+    InputError
+        Empty, non-finite or outside [0, 1] (by more than 1e-9).
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §5.4 (seed 002 lines 942–946).
+
+    Examples
+    --------
+    >>> relative_redundancy([0.5, 0.7, 0.9])
+    0.7
+    """
+    if isinstance(redundancy_numbers, (str, bytes)) or redundancy_numbers is None:
+        raise InputError("redundancy_numbers: give finite r_i in [0, 1], at least one")
+    try:
+        r = np.asarray(redundancy_numbers, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise InputError("redundancy_numbers: give finite r_i in [0, 1], at least one") from None
+    if r.size == 0 or not np.all(np.isfinite(r)) or np.any(r < -1e-9) or np.any(r > 1 + 1e-9):
+        raise InputError("redundancy_numbers: give finite r_i in [0, 1], at least one")
+    return round(float(r.mean()), 15)

@@ -21,6 +21,11 @@ adjustment's control and check-point discrepancies with the tolerances of 3.7.6;
 :data:`TOLERANCE_NAMES`); the book layer passes the values transcribed in ``textbook/ch03.toml``.
 The rebuilt blocks of figs. 3.10 and 3.13 are book content: ``photolib.book.ch03_layouts``.
 
+Hanzl, Fotogrammetrie, Modul 01, §4.3 and §4.5 (seed 002 lines 742–744, 826) gives two empirical
+accuracy rules of aerotriangulation, here as small functions: σ_XY ≈ 5 µm·m_s, σ_Z ≈ 0.005 % h
+(:func:`at_accuracy_rule`) and INPHO's GNSS-supported AT m_XY = 1.5 m_s σ₀, m_Z = 2.2 m_s σ₀
+(:func:`gnss_at_accuracy`). They are rules of thumb, not derived from the adjustment.
+
 Units: image mm, object metres, angles radians.
 """
 
@@ -38,7 +43,7 @@ from .synthetic import CONTROL, Block, footprint_visibility  # noqa: F401  (foot
 __all__ = ["bundle_unknowns", "bundle_equations", "images_per_point", "block_counts", "BundleSystem",
            "correction_equation_system", "normal_matrix_structure", "predicted_point_sigma",
            "check_point_accuracy", "TOLERANCE_NAMES", "Criterion", "check_height_factor",
-           "free_strip_height_tolerance_um", "evaluate_regulations"]
+           "free_strip_height_tolerance_um", "evaluate_regulations", "at_accuracy_rule", "gnss_at_accuracy"]
 
 EO_COLUMN_NAMES = ("X_S", "Y_S", "Z_S", "ω", "α", "κ")
 
@@ -809,3 +814,83 @@ def evaluate_regulations(control_errors, check_errors, scale_denominator: float,
         out.append(Criterion("3.7.6", f"share of check points with {what} error ≥ {factor:g}× tolerance",
                              100.0 * frac, share, "%", frac <= share / 100.0))
     return out
+
+
+def at_accuracy_rule(scale_number: float, flying_height: float, *, image_sigma_um: float = 5.0) -> tuple:
+    """Hanzl's rule of thumb for aerotriangulation: σ_XY ≈ 5 µm·m_s, σ_Z ≈ 0.005 % h.
+
+    Valid, in the text, for signalised points, a wide-angle camera and additional parameters; with
+    residual systematic errors or natural points the accuracy may be 2–3 times worse.
+
+    Parameters
+    ----------
+    scale_number : float
+        Image scale number m_s (e.g. 10000), > 0.
+    flying_height : float
+        Flying height above ground h, m, > 0.
+    image_sigma_um : float
+        The 5 µm of the rule (image-space accuracy), µm, > 0.
+
+    Returns
+    -------
+    (float, float)
+        σ_XY and σ_Z, m.
+
+    Raises
+    ------
+    InputError
+        Non-finite or non-positive arguments.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §4.3 (seed 002 line 744); Chibunichev §3.5 (accuracy of the bundle).
+
+    Examples
+    --------
+    >>> sxy, sz = at_accuracy_rule(10000, 1530.0)
+    >>> round(sxy, 4), round(sz, 4)
+    (0.05, 0.0765)
+    """
+    from . import _checks
+    m_s = _checks.number(scale_number, "scale_number", positive=True)
+    h = _checks.number(flying_height, "flying_height", positive=True)
+    s_um = _checks.number(image_sigma_um, "image_sigma_um", positive=True)
+    return s_um * 1e-6 * m_s, 0.005e-2 * h
+
+
+def gnss_at_accuracy(scale_number: float, sigma0_um: float) -> tuple:
+    """INPHO's empirical accuracy of GNSS-supported aerotriangulation: m_XY = 1.5 m_s σ₀, m_Z = 2.2 m_s σ₀.
+
+    From 23 blocks with 60 % / 20 % overlap and c = 15 cm; control and projection centres then
+    had m_XYZ = m_s σ₀ (also returned).
+
+    Parameters
+    ----------
+    scale_number : float
+        Image scale number m_s, > 0.
+    sigma0_um : float
+        σ₀ of the block adjustment (image space), µm, > 0.
+
+    Returns
+    -------
+    (float, float, float)
+        m_XY, m_Z and m_XYZ = m_s σ₀, m.
+
+    Raises
+    ------
+    InputError
+        Non-finite or non-positive arguments.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §4.5 (seed 002 line 826); Chibunichev §3.5, eq. (3.5.18).
+
+    Examples
+    --------
+    >>> [round(v, 3) for v in gnss_at_accuracy(10000, 5.0)]
+    [0.075, 0.11, 0.05]
+    """
+    from . import _checks
+    m_s = _checks.number(scale_number, "scale_number", positive=True)
+    s0 = _checks.number(sigma0_um, "sigma0_um", positive=True) * 1e-6
+    return 1.5 * m_s * s0, 2.2 * m_s * s0, m_s * s0
