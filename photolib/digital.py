@@ -1,5 +1,9 @@
 """Digital image coordinates — Chapter 1, §1.10 (Наблюдение и измерение цифровых изображений).
 
+Also Hanzl, Fotogrammetrie, Modul 01, §10.1 (seed 002 lines 1781–1787): the coordinates of a
+normalised image, x_N = (λ/λ_N) R_N⁻¹ R x (:func:`normalized_image_coordinates`); its grey values
+come from the original by :func:`bilinear` (Hanzl §9's a₀ + a₁X + a₂Y + a₃XY on a pixel cell).
+
 A digital image is a matrix a_ij of brightness values; the row number i and the column number j
 both start at 0. Two pixel coordinate systems are in use (Fig. 1.19 of the book):
 
@@ -32,6 +36,7 @@ from .errors import InputError
 from .rotation import _numbers
 
 __all__ = ["ORIGINS", "pixel_center", "subpixel_coordinates", "pixel_to_physical", "flip_rows", "flip_y",
+           "normalized_image_coordinates",
            "bilinear", "shift_image"]
 
 ORIGINS = ("corner", "center")
@@ -434,3 +439,71 @@ def shift_image(image, dx_p, dy_p, fill=np.nan):
     out = np.full(img.shape, np.nan if fill is None else float(fill))
     out[inside] = _bilinear(img, xs[inside], ys[inside])
     return out
+
+
+def normalized_image_coordinates(xy, c: float, rotation, rotation_n, c_n=None):
+    """Image coordinates on a normalised image: x_N = (λ/λ_N) R_N⁻¹ R x, x = (x, y, −c).
+
+    From X = X₀ + λ R x = X₀ + λ_N R_N x_N (same projection centre): the ray of the original
+    image turned into the normalised image's frame, scaled so that its third component is −c_N.
+    A projective (homography) relation between the two images.
+
+    Parameters
+    ----------
+    xy : array_like (n, 2) or (2,)
+        Image coordinates (x, y) relative to the principal point, mm.
+    c : float
+        Camera constant of the original image, mm.
+    rotation, rotation_n : (3, 3) array_like
+        R (original image → object) and R_N (normalised image → object), orthonormal.
+    c_n : float, optional
+        Camera constant of the normalised image (default ``c``).
+
+    Returns
+    -------
+    ndarray (n, 2) or (2,)
+        (x_N, y_N), mm.
+
+    Raises
+    ------
+    InputError
+        Non-finite or wrongly shaped input, c ≤ 0, a matrix that is not a rotation.
+    DegenerateGeometryError
+        A ray parallel to the normalised image plane (λ/λ_N undefined) or pointing behind it.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §10.1 (seed 002 lines 1781–1787); Chibunichev (2022), §5.6
+    and §6.1 (epipolar images, :func:`photolib.epipolar.rectify_pair`).
+
+    Examples
+    --------
+    >>> normalized_image_coordinates([10.0, -5.0], 150.0, np.eye(3), np.eye(3)).tolist()
+    [10.0, -5.0]
+    """
+    from .errors import DegenerateGeometryError
+
+    try:
+        p = np.asarray(xy, dtype=float)
+        R = np.asarray(rotation, dtype=float)
+        Rn = np.asarray(rotation_n, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError("xy, rotation and rotation_n must be arrays of numbers") from None
+    single = p.shape == (2,)
+    pts = p.reshape(1, 2) if single else p
+    if pts.ndim != 2 or pts.shape[1] != 2 or not np.all(np.isfinite(pts)):
+        raise InputError(f"xy must be finite (x, y) pairs, got shape {p.shape}")
+    for M, name in ((R, "rotation"), (Rn, "rotation_n")):
+        if M.shape != (3, 3) or not np.all(np.isfinite(M)) or not np.allclose(M.T @ M, np.eye(3), atol=1e-9) \
+                or np.linalg.det(M) < 0:
+            raise InputError(f"{name} must be a 3×3 rotation matrix")
+    cc = float(_finite("c", c))
+    cn = cc if c_n is None else float(_finite("c_n", c_n))
+    if not (cc > 0 and cn > 0):
+        raise InputError(f"c and c_n must be positive, got {c!r}, {c_n!r}")
+    rays = np.column_stack([pts, np.full(len(pts), -cc)])
+    v = rays @ (Rn.T @ R).T                            # R_N⁻¹ R x
+    if np.any(v[:, 2] >= -1e-12 * cc):
+        raise DegenerateGeometryError("a ray is parallel to or behind the normalised image plane")
+    out = -cn * v[:, :2] / v[:, 2:3]                   # λ/λ_N = −c_N / (R_N⁻¹ R x)_3
+    return out[0] if single else out

@@ -6,6 +6,9 @@
   images); the integer match with its sub-pixel vertex by parabolas (5.1.3)–(5.1.5)
   (:func:`parabola_vertex`) and the sharpness of the peak (:func:`peak_sharpness`, Fig. 5.5),
   combined in :func:`match_point`.
+* Hanzl, Fotogrammetrie, Modul 01, §8.3 (seed 002 lines 1614–1644): the same correlation
+  coefficient and LS shift, and the sub-pixel maximum of a 2-D quadratic fitted to the correlation
+  surface (:func:`quadratic_peak`, with the corrected second normal equation).
 * §5.2 — least-squares matching (LSM) with a shift only, (5.2.1)–(5.2.3) (:func:`lsm_shift`).
 * §5.4 — LSM with an affine window (5.4.1)–(5.4.4) and a linear radiometric model
   (5.4.5)–(5.4.7) (:func:`lsm_affine`), with the a-posteriori σ of the shifts from the engine
@@ -34,7 +37,7 @@ import numpy as np
 from . import _checks
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
 
-__all__ = ["correlation_coefficient", "correlation_surface", "parabola_vertex", "peak_sharpness",
+__all__ = ["correlation_coefficient", "correlation_surface", "parabola_vertex", "quadratic_peak", "peak_sharpness",
            "MatchResult", "match_point", "LSMResult", "lsm_shift", "lsm_affine"]
 
 _REF = "Chibunichev (2022), §5.1, eqs. (5.1.1)–(5.1.5)"
@@ -300,6 +303,88 @@ def parabola_vertex(values, offsets=None):
         raise DegenerateGeometryError(f"the parabola vertex {vertex:.3f} lies outside the fitted offsets "
                                       f"[{x.min():g}, {x.max():g}]")
     return vertex, a
+
+
+def quadratic_peak(values, offsets=None):
+    """Sub-pixel maximum of a correlation surface by a 2-D quadratic, Hanzl §8.3.
+
+    Fits r = a₀ + a₁x + a₂y + a₃x² + a₄y² + a₅xy by least squares (the engine
+    :func:`photolib.lsq.solve_normal_equations`) and sets both partial derivatives to zero:
+
+        0 = a₁ + 2a₃x + a₅y,    0 = a₂ + a₅x + 2a₄y
+
+    (the text prints the second as a₂ + a₄x + 2a₅y, an erratum: see textbook/ch05_hanzl.toml).
+    The 2-D counterpart of :func:`parabola_vertex`.
+
+    Parameters
+    ----------
+    values : array_like (k, l)
+        Correlation coefficients on a grid around the integer peak (e.g. 3×3), k, l ≥ 3;
+        ``values[row, col]`` with y along the rows.
+    offsets : (array_like (l,), array_like (k,)), optional
+        x positions of the columns and y positions of the rows; default centred, −1, 0, 1 for 3×3.
+
+    Returns
+    -------
+    peak : ndarray (2,)
+        (x_MAX, y_MAX).
+    coefficients : ndarray (6,)
+        a₀ … a₅.
+
+    Raises
+    ------
+    InputError
+        Not a finite 2-D grid of at least 3×3, offsets of the wrong length or repeated.
+    DegenerateGeometryError
+        The fitted quadratic has no maximum (not negative definite: a ridge, a saddle or a valley),
+        or the maximum lies outside the fitted grid.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §8.3 (seed 002 lines 1636–1644); Chibunichev (2022), §5.1,
+    eqs. (5.1.3)–(5.1.5) (the 1-D parabolas).
+
+    Examples
+    --------
+    >>> x, y = np.meshgrid([-1.0, 0.0, 1.0], [-1.0, 0.0, 1.0])
+    >>> r = 0.9 - 0.1 * (x - 0.2) ** 2 - 0.05 * (y + 0.3) ** 2 + 0.02 * (x - 0.2) * (y + 0.3)
+    >>> peak, a = quadratic_peak(r)
+    >>> peak.round(10).tolist()
+    [0.2, -0.3]
+    """
+    from .lsq import solve_normal_equations
+
+    R = _array(values, "values", ndim=2, min_size=3)
+    if min(R.shape) < 3:
+        raise InputError(f"values must be a grid of at least 3×3, got shape {R.shape}")
+    if offsets is None:
+        xs = np.arange(R.shape[1], dtype=float) - (R.shape[1] - 1) / 2.0
+        ys = np.arange(R.shape[0], dtype=float) - (R.shape[0] - 1) / 2.0
+    else:
+        try:
+            ox, oy = offsets
+        except (TypeError, ValueError):
+            raise InputError("offsets must be a pair (x positions of the columns, y positions of the rows)") from None
+        xs = _array(ox, "x offsets", ndim=1, min_size=3)
+        ys = _array(oy, "y offsets", ndim=1, min_size=3)
+        if xs.size != R.shape[1] or ys.size != R.shape[0]:
+            raise InputError(f"offsets of lengths {xs.size}, {ys.size} for a grid of shape {R.shape}")
+        if np.unique(xs).size != xs.size or np.unique(ys).size != ys.size:
+            raise InputError("offsets must not repeat")
+    X, Y = np.meshgrid(xs, ys)
+    x, y, r = X.ravel(), Y.ravel(), R.ravel()
+    B = np.column_stack([np.ones_like(x), x, y, x * x, y * y, x * y])
+    a, _ = solve_normal_equations(B, -r, names=("a0", "a1", "a2", "a3", "a4", "a5"))
+    H = np.array([[2.0 * a[3], a[5]], [a[5], 2.0 * a[4]]])
+    scale = max(1.0, float(np.max(np.abs(r))))
+    if not (H[0, 0] < -1e-12 * scale and np.linalg.det(H) > 1e-24 * scale ** 2):
+        raise DegenerateGeometryError("the fitted quadratic has no maximum (not negative definite): "
+                                      "a ridge, saddle or flat correlation surface")
+    peak = np.linalg.solve(H, -a[1:3])
+    if not (xs.min() <= peak[0] <= xs.max() and ys.min() <= peak[1] <= ys.max()):
+        raise DegenerateGeometryError(f"the quadratic's maximum ({peak[0]:.3f}, {peak[1]:.3f}) lies outside "
+                                      "the fitted grid")
+    return peak, a
 
 
 def _curvatures(R, peak, radius):

@@ -1,4 +1,5 @@
-"""Aerial survey planning — Chapter 10, §10.3 (the technical project of an aerial phototopographic survey).
+"""Aerial survey planning — Chapter 10, §10.3 (the technical project of an aerial phototopographic survey),
+with Hanzl's §6 (acquisition of aerial images).
 
 §10.3 lists what the technical project computes for the aerial photography — flying height over
 the mean plane, ground sample distance (GSD), forward and side overlap, strip spacing, base and
@@ -22,6 +23,12 @@ exposure interval — but prints no formula; this module supplies the standard a
   :func:`skip_aerial_triangulation`, and what an attitude error means on the ground at the flying
   height: :func:`imu_ground_error`.
 
+Hanzl, Fotogrammetrie, Modul 01, §6 (seed 002 lines 1046–1288): the diffraction limit
+(:func:`diffraction_radius`), image motion (:func:`image_motion`), AWAR (:func:`awar`), flight
+planning with the image-scale number and overlaps in per cent (:func:`photo_flight_plan`), the
+empirical image scale of Tab. 6.1 (:func:`photo_scale_from_map`), target sizes (:func:`target_sizes`)
+and the camera constant / radial distortion from goniometer angles (:func:`goniometer_distortion`).
+
 Units: focal length and pixel size in mm (any one unit for both), flying heights, GSD and ground
 sizes in m, angles in radians, speeds in m/s. Block frame: strips run along X; images are vertical
 (nadir) with the camera x axis along the flight.
@@ -42,7 +49,9 @@ from .rectify import RasterGrid, dem_height
 __all__ = ["ground_sample_distance", "flying_height_for_gsd", "FlightPlan", "plan_block",
            "StripOverRelief", "strip_over_relief", "dem_to_local", "surface_dem",
            "MarkerDesign", "gcp_marker", "MarkerCheck", "check_marker",
-           "ImuGroundError", "imu_ground_error", "ATDecision", "skip_aerial_triangulation"]
+           "ImuGroundError", "imu_ground_error", "ATDecision", "skip_aerial_triangulation",
+           "diffraction_radius", "image_motion", "awar", "PhotoFlightPlan", "photo_flight_plan",
+           "photo_scale_from_map", "TargetSizes", "target_sizes", "GoniometerCalibration", "goniometer_distortion"]
 
 # §10.3 (line 5841): marker rules, in GSD (pixels on the ground)
 _ARM_MIN, _ARM_MAX, _WIDTH_MIN, _WIDTH_MAX, _SQUARE_MIN = 4.0, 20.0, 2.0, 3.0, 8.0
@@ -1008,3 +1017,454 @@ def skip_aerial_triangulation(sigma_roll: float, sigma_pitch: float, sigma_headi
     if cadastral_points:
         reasons.append("high-accuracy cadastral points are required")
     return ATDecision(not reasons, tuple(reasons))
+
+
+# ------------------------------------------------------------------------------------- Hanzl §6
+# Hanzl, Fotogrammetrie, Modul 01, §6 "Pořízení leteckých snímků" (seed 002 lines 1046–1288):
+# camera calibration by goniometer (§6.1), image quality (§6.3), flight planning (§6.4) and the sizes
+# of signalised control points (§6.5). Symbols as in the text: m_s is the image-scale *number*
+# (e.g. 10 000), c the camera constant, s the side of the image format, p, q overlaps in per cent.
+_HANZL = "Hanzl, Fotogrammetrie, Modul 01"
+
+
+def _positive_array(value, name, min_size=1):
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be an array of numbers, got {value!r}") from None
+    arr = np.atleast_1d(arr)
+    if arr.ndim != 1 or arr.size < min_size:
+        raise InputError(f"{name} must be a 1-D array of at least {min_size} number(s), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise InputError(f"{name} contains NaN or inf")
+    return arr
+
+
+def diffraction_radius(f_number: float, wavelength: float = 0.55) -> float:
+    """Radius of the first dark Airy ring, r = 1.22 · λ · f/D (the diffraction limit of a lens).
+
+    Two points are resolved when their Airy discs are at least r apart (Rayleigh's criterion).
+
+    Parameters
+    ----------
+    f_number : float
+        k = f/D, focal length over the diameter of the entrance pupil; positive.
+    wavelength : float
+        λ, µm (default 0.55 µm, the mean wavelength of visible light used by the text).
+
+    Returns
+    -------
+    float
+        r in the unit of ``wavelength`` (µm).
+
+    Raises
+    ------
+    InputError
+        Non-positive or non-finite values.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §6.3.1 (seed 002 lines 1131–1133): for k = 4, r = 2.7 µm.
+
+    Examples
+    --------
+    >>> from photolib.planning import diffraction_radius
+    >>> round(diffraction_radius(4.0), 3)
+    2.684
+    """
+    return 1.22 * _num(wavelength, "wavelength", True) * _num(f_number, "f_number", True)
+
+
+def image_motion(speed: float, exposure_time: float, scale_number: float) -> float:
+    """Theoretical image motion (smear) during the exposure, s = v · t / m_s.
+
+    Experience says only about half of it shows in the image (the text); forward motion
+    compensation (FMC, TDI) removes it.
+
+    Parameters
+    ----------
+    speed : float
+        Ground speed of the aircraft, m/s (≥ 0).
+    exposure_time : float
+        t, s; positive.
+    scale_number : float
+        m_s, the image-scale number (1 : m_s); positive.
+
+    Returns
+    -------
+    float
+        Length of the smear in the image, m (multiply by 1e6 for µm).
+
+    Raises
+    ------
+    InputError
+        Negative speed, non-positive time or scale number, NaN/inf.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §6.3.3 (seed 002 lines 1155–1159): 180 km/h, 1/200 s, 1:10 000
+    give 25 µm.
+
+    Examples
+    --------
+    >>> from photolib.planning import image_motion
+    >>> round(image_motion(180 / 3.6, 1 / 200, 10000) * 1e6, 6)
+    25.0
+    """
+    v = _num(speed, "speed", True, allow_zero=True)
+    return v * _num(exposure_time, "exposure_time", True) / _num(scale_number, "scale_number", True)
+
+
+def awar(areas, resolutions) -> float:
+    """Area-weighted average resolution, AWAR = Σ A_i R_i / Σ A_i.
+
+    Parameters
+    ----------
+    areas : array_like (n,)
+        Areas A_i of the parts of the image (any unit); non-negative, not all zero.
+    resolutions : array_like (n,)
+        Resolution R_i measured in each part (lines/mm); non-negative.
+
+    Returns
+    -------
+    float
+        The AWAR, in the unit of ``resolutions``.
+
+    Raises
+    ------
+    InputError
+        Different lengths, negative values, all areas zero, NaN/inf.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §6.3.2 (seed 002 lines 1143–1147).
+
+    Examples
+    --------
+    >>> from photolib.planning import awar
+    >>> awar([1.0, 3.0], [100.0, 60.0])
+    70.0
+    """
+    A = _positive_array(areas, "areas")
+    R = _positive_array(resolutions, "resolutions")
+    if A.size != R.size:
+        raise InputError(f"{A.size} areas but {R.size} resolutions")
+    if np.any(A < 0) or np.any(R < 0):
+        raise InputError("areas and resolutions must be non-negative")
+    if A.sum() <= 0:
+        raise InputError("the areas sum to zero: no weights")
+    return float((A * R).sum() / A.sum())
+
+
+class PhotoFlightPlan(NamedTuple):
+    """The flight-planning quantities of Hanzl §6.4: see :func:`photo_flight_plan`.
+
+    Attributes
+    ----------
+    scale_number : float
+        m_s = h / c.
+    flying_height : float
+        h = c · m_s above the terrain, m.
+    altitude : float
+        Z = Z_ter + h, m.
+    base : float
+        B = s · m_s · (1 − p/100), m.
+    strip_spacing : float
+        A = s · m_s · (1 − q/100), m.
+    footprint : float
+        s · m_s, the side of an image on the ground, m.
+    base_height_ratio : float
+        B / h.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §6.4 (seed 002 lines 1163–1175).
+
+    Examples
+    --------
+    >>> from photolib.planning import PhotoFlightPlan
+    >>> PhotoFlightPlan(10000.0, 1530.0, 1730.0, 920.0, 1725.0, 2300.0, 0.6).base
+    920.0
+    """
+
+    scale_number: float
+    flying_height: float
+    altitude: float
+    base: float
+    strip_spacing: float
+    footprint: float
+    base_height_ratio: float
+
+
+def photo_flight_plan(c: float, scale_number: float, format_side: float = 230.0, *, forward_overlap: float = 60.0,
+                      side_overlap: float = 25.0, terrain_height: float = 0.0) -> PhotoFlightPlan:
+    """Flight planning of Hanzl §6.4: h = c·m_s, Z = Z_ter + h, B = s m_s (1 − p/100), A = s m_s (1 − q/100).
+
+    The same arithmetic as :func:`plan_block` (Chibunichev §10.3) written with the image-scale
+    number and overlaps in per cent, for a square film format.
+
+    Parameters
+    ----------
+    c : float
+        Camera constant, mm.
+    scale_number : float
+        m_s (image scale 1 : m_s).
+    format_side : float
+        s, side of the (square) image format, mm (23 × 23 cm film: 230).
+    forward_overlap, side_overlap : float
+        p and q in per cent, in [0, 100) (usually 60 and 25; 25–35 % without GPS navigation).
+    terrain_height : float
+        Z_ter, m.
+
+    Returns
+    -------
+    PhotoFlightPlan
+
+    Raises
+    ------
+    InputError
+        Non-positive c, m_s or s; overlaps outside [0, 100); NaN/inf.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §6.4 (seed 002 lines 1163–1175); Chibunichev (2022), §10.3.
+
+    Examples
+    --------
+    >>> from photolib.planning import photo_flight_plan
+    >>> p = photo_flight_plan(153.0, 10000, 230.0, terrain_height=200.0)
+    >>> round(p.flying_height, 6), round(p.altitude, 6), round(p.base, 6), round(p.strip_spacing, 6)
+    (1530.0, 1730.0, 920.0, 1725.0)
+    """
+    cc = _num(c, "c", True)
+    ms = _num(scale_number, "scale_number", True)
+    s = _num(format_side, "format_side", True)
+    p = _num(forward_overlap, "forward_overlap")
+    q = _num(side_overlap, "side_overlap")
+    for v, name in ((p, "forward_overlap"), (q, "side_overlap")):
+        if not 0.0 <= v < 100.0:
+            raise InputError(f"{name} must be a percentage in [0, 100) (e.g. 60), got {v!r}")
+    z = _num(terrain_height, "terrain_height")
+    h = cc * ms / 1000.0
+    foot = s * ms / 1000.0
+    B = foot * (1.0 - p / 100.0)
+    return PhotoFlightPlan(ms, h, z + h, B, foot * (1.0 - q / 100.0), foot, B / h)
+
+
+def photo_scale_from_map(map_scale_number, constant: float = 200.0):
+    """Empirical image-scale number for a map scale, m_s = c·√m_k (Hanzl's Table 6.1 rule).
+
+    Here c = 200 is an empirical constant, *not* the camera constant.
+
+    Parameters
+    ----------
+    map_scale_number : float or array_like
+        m_k, the map-scale number (map 1 : m_k); positive.
+    constant : float
+        The empirical constant (200 in the text).
+
+    Returns
+    -------
+    float or ndarray
+        m_s, unrounded (the table prints it to two significant digits).
+
+    Raises
+    ------
+    InputError
+        Non-positive or non-finite values.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §6.4, Tab. 6.1 (seed 002 lines 1183–1193).
+
+    Examples
+    --------
+    >>> from photolib.planning import photo_scale_from_map
+    >>> round(photo_scale_from_map(10000), 6)
+    20000.0
+    """
+    k = _num(constant, "constant", True)
+    mk = _positive_array(map_scale_number, "map_scale_number")
+    if np.any(mk <= 0):
+        raise InputError(f"map_scale_number must be positive, got {map_scale_number!r}")
+    out = k * np.sqrt(mk)
+    return float(out[0]) if np.ndim(map_scale_number) == 0 else out
+
+
+class TargetSizes(NamedTuple):
+    """Sizes of signalised control points (Hanzl §6.5): see :func:`target_sizes`.
+
+    Attributes
+    ----------
+    arm_length, arm_width, square_side : float
+        Cross arm length m_s/80 cm, arm width m_s/500 cm, side of a square target m_s/300 cm,
+        given here in metres.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §6.5 (seed 002 line 1209).
+
+    Examples
+    --------
+    >>> from photolib.planning import TargetSizes
+    >>> TargetSizes(1.25, 0.2, 0.33).arm_width
+    0.2
+    """
+
+    arm_length: float
+    arm_width: float
+    square_side: float
+
+
+def target_sizes(scale_number: float) -> TargetSizes:
+    """Signal sizes from the image-scale number: arm m_s/80, width m_s/500, square m_s/300 (in cm).
+
+    Compare :func:`gcp_marker`, the GSD-based rules of Chibunichev §10.3.
+
+    Parameters
+    ----------
+    scale_number : float
+        m_s; positive.
+
+    Returns
+    -------
+    TargetSizes
+        In metres.
+
+    Raises
+    ------
+    InputError
+        Non-positive or non-finite m_s.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §6.5 (seed 002 line 1209); Chibunichev (2022), §10.3.
+
+    Examples
+    --------
+    >>> from photolib.planning import target_sizes
+    >>> t = target_sizes(10000)
+    >>> round(t.arm_length, 6), round(t.arm_width, 6), round(t.square_side, 4)
+    (1.25, 0.2, 0.3333)
+    """
+    ms = _num(scale_number, "scale_number", True)
+    return TargetSizes(ms / 80.0 / 100.0, ms / 500.0 / 100.0, ms / 300.0 / 100.0)
+
+
+class GoniometerCalibration(NamedTuple):
+    """Camera constant and radial distortion from goniometer angles: see :func:`goniometer_distortion`.
+
+    Attributes
+    ----------
+    dc : float
+        Correction of the camera constant, in the unit of ``r``.
+    c : float
+        The adjusted camera constant c + dc.
+    dr : ndarray
+        Radial distortion with the adjusted constant, dr = r − (c + dc)·tan τ.
+    dr0 : ndarray
+        Radial distortion with the nominal constant, dr = r − c·tan τ.
+    criterion : str
+        ``"lsq"`` or ``"minmax"``.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §6.1 (seed 002 lines 1062–1068).
+
+    Examples
+    --------
+    >>> from photolib.planning import GoniometerCalibration
+    >>> GoniometerCalibration(0.01, 153.01, np.zeros(2), np.zeros(2), "lsq").c
+    153.01
+    """
+
+    dc: float
+    c: float
+    dr: np.ndarray
+    dr0: np.ndarray
+    criterion: str
+
+
+def goniometer_distortion(r, tau, c: float, criterion: str = "lsq") -> GoniometerCalibration:
+    """Radial distortion dr = r − c·tan τ from a goniometer, with the camera constant adjusted by dc.
+
+    The goniometer measures, for graduation marks at radii r from the principal point of
+    autocollimation, the angles τ of the rays. With the nominal constant c the distortion is
+    dr = r − c tan τ; the constant is then changed to c + dc so that the distortion curve
+    dr = r − (c + dc) tan τ is balanced:
+
+    * ``"minmax"`` — |dr_min| = |dr_max|, i.e. dc minimises max |dr| (the exact minimax solution,
+      found among the breakpoints of the piecewise-linear objective);
+    * ``"lsq"`` — Σ dr² = min, dc = Σ (r − c tan τ) tan τ / Σ tan² τ (the engine
+      :func:`photolib.lsq.solve_normal_equations` with one unknown).
+
+    Parameters
+    ----------
+    r : array_like (n,)
+        Radii of the marks, mm (≥ 0).
+    tau : array_like (n,)
+        Their field angles τ, radians, in [0, π/2).
+    c : float
+        Nominal camera constant, mm.
+    criterion : {"lsq", "minmax"}
+        How dc is chosen.
+
+    Returns
+    -------
+    GoniometerCalibration
+
+    Raises
+    ------
+    InputError
+        Different lengths, NaN/inf, angles outside [0, π/2), negative radii, unknown criterion.
+    DegenerateGeometryError
+        All angles zero (dc undetermined).
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §6.1, Fig. 6.2–6.3 (seed 002 lines 1062–1068).
+
+    Examples
+    --------
+    >>> from photolib.planning import goniometer_distortion
+    >>> tau = np.radians([0.0, 10.0, 20.0, 30.0])
+    >>> r = 152.0 * np.tan(tau)                   # a distortion-free lens with c = 152 mm
+    >>> round(goniometer_distortion(r, tau, 150.0).dc, 9)
+    2.0
+    """
+    from .lsq import solve_normal_equations
+
+    rr = _positive_array(r, "r")
+    t = _positive_array(tau, "tau")
+    if rr.size != t.size:
+        raise InputError(f"{rr.size} radii but {t.size} angles")
+    if np.any(rr < 0):
+        raise InputError("radii r must be non-negative")
+    if np.any(t < 0) or np.any(t >= math.pi / 2):
+        raise InputError("angles tau must lie in [0, π/2) radians")
+    cc = _num(c, "c", True)
+    if criterion not in ("lsq", "minmax"):
+        raise InputError(f"criterion must be 'lsq' or 'minmax', got {criterion!r}")
+    tn = np.tan(t)
+    if np.all(tn <= 0):
+        raise DegenerateGeometryError("all angles are zero: the camera constant is undetermined")
+    dr0 = rr - cc * tn
+    if criterion == "lsq":
+        delta, _ = solve_normal_equations(tn[:, None], -dr0, names=("dc",))   # tanτ·dc − dr0 = v
+        dc = float(delta[0])
+    else:
+        # max_i |dr0_i − dc·t_i| is convex and piecewise linear in dc: its minimum is at a breakpoint,
+        # an intersection of two of the lines ±(dr0_i − dc·t_i).
+        e, s = dr0, tn
+        cand = [e[s > 0] / s[s > 0]]
+        i, j = np.triu_indices(e.size, 1)
+        den = s[i] + s[j]
+        cand.append((e[i] + e[j])[den > 0] / den[den > 0])
+        dif = s[i] - s[j]
+        ok = np.abs(dif) > 1e-15
+        cand.append((e[i] - e[j])[ok] / dif[ok])
+        cand = np.concatenate(cand)
+        obj = np.abs(e[None, :] - cand[:, None] * s[None, :]).max(axis=1)
+        dc = float(cand[np.argmin(obj)])
+    return GoniometerCalibration(dc, cc + dc, rr - (cc + dc) * tn, dr0, criterion)
+
