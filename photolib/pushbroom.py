@@ -43,7 +43,7 @@ from .lsq import Adjustment, gauss_newton, solve_normal_equations
 from .rotation import rotation_matrix
 
 __all__ = ["EO_NAMES", "ray_linear_ccd", "staggered_offsets", "ray_whiskbroom", "ray_three_line",
-           "tilted_focal_length", "EOPolynomial", "EOTable", "Pushbroom", "PushbroomResection", "resect_pushbroom",
+           "tilted_focal_length", "line_field_of_view", "EOPolynomial", "EOTable", "Pushbroom", "PushbroomResection", "resect_pushbroom",
            "resection_condition", "ApproximateModel", "fit_approximate_model", "fit_dlt", "fit_affine",
            "fit_parallel_perspective", "intersect_scanner_rays", "intersect_pushbroom", "first_line_rays",
            "PairOrientation", "orient_pushbroom_pair"]
@@ -323,6 +323,45 @@ def tilted_focal_length(f0, alpha):
         raise InputError("|alpha| must be below π/2 (radians)")
     out = f0 / np.cos(alpha)
     return float(out) if out.ndim == 0 else out
+
+
+def line_field_of_view(n_pixels, pixel_size, f):
+    """Field of view across the track of a linear CCD of ``n_pixels`` centred on the principal point.
+
+    The line is n·p long; its ends are seen at ±atan(n·p / 2f) from the optical axis (the ray
+    (8.2.2) of the first and the last pixel), so the full angle is Θ = 2·atan(n·p / 2f).
+
+    Parameters
+    ----------
+    n_pixels : int or float
+        Pixels in the line (> 0).
+    pixel_size : float
+        Pixel pitch, in the unit of ``f`` (> 0).
+    f : float
+        Focal length (camera constant), > 0.
+
+    Returns
+    -------
+    float
+        Θ in radians.
+
+    Raises
+    ------
+    InputError
+        NaN/inf or non-positive values.
+
+    References
+    ----------
+    Chibunichev (2022), §8.2, eq. (8.2.2); Hanzl, Fotogrammetrie, Modul 01, §12.1–§12.2 (seed 002
+    lines 1886–1912: the ADS40 and STARIMAGER lines, whose "46°" the text's own numbers do not give).
+
+    Examples
+    --------
+    >>> round(float(np.degrees(line_field_of_view(12000, 0.0065, 62.5))), 1)   # ADS40
+    63.9
+    """
+    n, p, f = (_positive(v, name) for v, name in ((n_pixels, "n_pixels"), (pixel_size, "pixel_size"), (f, "f")))
+    return float(2.0 * np.arctan(n * p / (2.0 * f)))
 
 
 # --------------------------------------------------------------------------- EO in time §8.5

@@ -42,6 +42,12 @@ Modules, by topic:
 * :mod:`~photolib.derivations.direct_orientation` — the boresight-misalignment calibration
   (6 parameters), Hanzl §7.3.
 * :mod:`~photolib.derivations.plane` — the congruent plane transformation of Hanzl's §2.5.
+* :mod:`~photolib.derivations.parallax` — Hanzl §3: the first-order y-parallax of relative
+  orientation, the model deformation, printed vs derived formulas of §3.1–§3.2.6.
+* :mod:`~photolib.derivations.hanzl_at` — Hanzl §4.4 and §5.4.1: Ebner's 12 orthogonal parameters
+  with the radial and tangential ones, Brown's 18 and Murai's model.
+* :mod:`~photolib.derivations.estimation` — Hanzl §7.1, §7.3: least squares, sequential least
+  squares, the Kalman update and the transition matrix derived from first principles.
 * :mod:`~photolib.derivations.planar_target` — Sementsov's planar-target theory (6)–(18) and the
   additional-parameter models (2)–(4), appendix to Chapter 11.
 * :mod:`~photolib.derivations.mockup` — collinearity with f, x₀, y₀ unknown and the tripod-head
@@ -57,23 +63,26 @@ Examples
 (2, 6)
 """
 
-from . import (bundle, collinearity, coplanarity, direct_orientation, distortion, georef, gnss, intersection, lidar, matching,
-               mockup, model, orthophoto, planar_target, plane, projective, quaternion, radar, registration, rotation,
-               scanner, shapes, similarity, symbols, terrestrial)
+from . import (bundle, collinearity, coplanarity, direct_orientation, distortion, estimation, georef, gnss, hanzl_at,
+               intersection, lidar, matching, mockup, model, orthophoto, parallax, planar_target, plane, projective,
+               quaternion, radar, registration, rotation, scanner, shapes, similarity, symbols, terrestrial)
 from .bundle import *  # noqa: F401,F403
 from .collinearity import *  # noqa: F401,F403
 from .coplanarity import *  # noqa: F401,F403
 from .coplanarity import _IMAGE1_SUBS  # noqa: F401 — used by the book's tests
 from .direct_orientation import *  # noqa: F401,F403
 from .distortion import *  # noqa: F401,F403
+from .estimation import *  # noqa: F401,F403
 from .georef import *  # noqa: F401,F403
 from .gnss import *  # noqa: F401,F403
+from .hanzl_at import *  # noqa: F401,F403
 from .intersection import *  # noqa: F401,F403
 from .lidar import *  # noqa: F401,F403
 from .matching import *  # noqa: F401,F403
 from .mockup import *  # noqa: F401,F403
 from .model import *  # noqa: F401,F403
 from .orthophoto import *  # noqa: F401,F403
+from .parallax import *  # noqa: F401,F403
 from .planar_target import *  # noqa: F401,F403
 from .plane import *  # noqa: F401,F403
 from .projective import *  # noqa: F401,F403

@@ -6,6 +6,7 @@ import pytest
 from catalogue import INF, NAN, Case, check_case
 from photolib import direct_orientation as do
 from photolib.derivations import direct_orientation as ddo
+from photolib.derivations import estimation as est
 from photolib.errors import DegenerateGeometryError, InputError
 
 A3 = np.array([[1.0, 0.0], [1.0, 1.0], [1.0, 2.0]])
@@ -106,6 +107,13 @@ CASES = [
     Case(do.calibrate_boresight, B_ARGS, {"sigma_xy": 0.0}, raises=InputError, why="zero sigma"),
     Case(ddo.boresight_model, (), raises=None, check=lambda m: m["jacobian"].shape == (2, 6), why="no input"),
     Case(ddo.boresight_functions, (), raises=None, check=lambda f: len(f) == 2, why="no input"),
+    Case(est.least_squares_solution, (), raises=None, check=lambda d: d["x"].shape == (2, 1), why="no input"),
+    Case(est.sequential_blocks, (3,), raises=InputError, why="second block of 3 observations"),
+    Case(est.sequential_blocks, ("1",), raises=InputError, why="m2 not an integer"),
+    Case(est.kalman_update_batch, (), raises=None, check=lambda d: d["Q_hat"].shape == (2, 2), why="no input"),
+    Case(est.transition_series, (0,), raises=InputError, why="order 0"),
+    Case(est.transition_series, (1.5,), raises=InputError, why="order not an integer"),
+    Case(est.position_integral, (), raises=None, check=lambda d: "r" in d, why="no input"),
 ]
 
 

@@ -251,3 +251,22 @@ def test_boresight_one_image_collinear_points_is_degenerate():
 def test_earth_rate_is_the_printed_value_and_close_to_sidereal():
     assert do.EARTH_RATE == 7.29211e-5
     assert do.EARTH_RATE == pytest.approx(2 * np.pi / 86164.0905, abs=1e-10)
+
+
+def test_estimation_derivations_agree_with_the_numeric_sequential_update():
+    """The sympy blocks of photolib.derivations.estimation, evaluated at numbers, give the same Δx
+    and ΔQ as photolib.direct_orientation.sequential_update (two independent routes)."""
+    import sympy as sp
+    from photolib.derivations import estimation as E
+    d = E.sequential_blocks(1)
+    N1 = np.array([[5.0, 1.0], [1.0, 3.0]])
+    h1, A2, P2, l2 = np.array([1.0, -2.0]), np.array([[0.5, 2.0]]), np.array([4.0]), np.array([0.7])
+    values = {sp.Symbol("n11", real=True): 5, sp.Symbol("n12", real=True): 1, sp.Symbol("n22", real=True): 3,
+              sp.Symbol("h11", real=True): 1, sp.Symbol("h21", real=True): -2,
+              sp.Symbol("b11", real=True): sp.Rational(1, 2), sp.Symbol("b12", real=True): 2,
+              sp.Symbol("w1", positive=True): 4, sp.Symbol("k11", real=True): sp.Rational(7, 10)}
+    dx = np.array(d["dx"].subs(values), dtype=float).ravel()
+    dQ = np.array(d["dQ"].subs(values), dtype=float)
+    Q0 = np.linalg.inv(N1)
+    x, Q, _ = do.sequential_update(Q0 @ h1, Q0, A2, l2, np.diag(P2))
+    assert np.allclose(x - Q0 @ h1, dx, atol=1e-12) and np.allclose(Q - Q0, dQ, atol=1e-12)

@@ -521,3 +521,12 @@ def test_resection_refuses_a_table():
     X, Y = cam.ground(rows, cols, 100.0)
     with pytest.raises(InputError, match="EOPolynomial"):
         pb.resect_pushbroom(cam, rows, cols, np.column_stack([X, Y, np.full(10, 100.0)]))
+
+
+@pytest.mark.parametrize("n, pixel, f", [(12000, 0.0065, 62.5), (14400, 0.005, 60.0), (1000, 0.01, 5.0)])
+def test_line_field_of_view_is_the_angle_between_the_end_rays(n, pixel, f):
+    """Θ equals the angle between the rays (8.2.2) of the outer edges of the first and last pixel."""
+    half = n * pixel / 2
+    r1, r2 = pb.ray_linear_ccd(-half, f), pb.ray_linear_ccd(half, f)
+    angle = np.arccos(np.clip(np.dot(r1, r2) / (np.linalg.norm(r1) * np.linalg.norm(r2)), -1, 1))
+    assert pb.line_field_of_view(n, pixel, f) == pytest.approx(angle, abs=1e-12)
