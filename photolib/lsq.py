@@ -21,6 +21,12 @@ a-posteriori accuracy
 and, where the design matrix is at hand, the redundancy numbers r_i = 1 − (B·Q·BᵀP)_ii
 (:func:`redundancy_numbers`).
 
+Robust adjustment (Hanzl, Fotogrammetrie, Modul 01, §2.6, seed 002 lines 313–342) is an option
+of the same loop: :func:`robust_gauss_newton` repeats :func:`gauss_newton` with changed weights —
+data snooping with the normalised residuals w_i = |v_i √p_i| / (σ₀ √r_i)
+(:func:`normalized_residuals`) or the Danish method with the weight function exp(−0.05·t^d)
+(:func:`danish_weight`) — and ends with the original weights of the observations kept.
+
 There is **one** Gauss–Newton loop (``_iterate``) with two pluggable linear solvers:
 
 * dense — :func:`solve_normal_equations`, for every problem of a handful of unknowns
@@ -51,7 +57,9 @@ __all__ = ["Adjustment", "AdjustmentView", "IterationRecord", "BlockCorrectionEq
            "GlobalBlockCorrectionEquations", "BlockSolution", "gauss_newton", "block_gauss_newton",
            "solve_normal_equations", "solve_block_normal_equations", "solve_partitioned_normal_equations",
            "accuracy", "redundancy_numbers", "point_weights", "block_equations_dense",
-           "global_block_equations_dense", "blas_on_one_thread"]
+           "global_block_equations_dense", "blas_on_one_thread", "RobustIterationRecord", "RobustAdjustment",
+           "robust_gauss_newton", "normalized_residuals", "danish_weight", "DANISH_EXPONENTS", "DANISH_FACTOR",
+           "SNOOPING_CRITICAL"]
 
 _REF_18 = "Chibunichev (2022), §1.8, eqs. (1.8.5)–(1.8.10)"
 
@@ -730,6 +738,519 @@ def gauss_newton(linearize: Callable[[np.ndarray], tuple], x0, weights=None, *, 
     except ValueError:
         raise InputError(f"tol: one value or one per unknown ({x.size}), got shape {np.shape(tol)}") from None
     return _iterate(_DenseSolver(linearize, weights, names, dof, tol), x, max_iter, progress)
+
+
+# --- Hanzl §2.6: robust adjustment (data snooping, the Danish method) ---------------------------
+#
+# Hanzl, Fotogrammetrie, Modul 01, §2.6 "Robustní vyrovnání" (seed 002 lines 313–342). In Hanzl's
+# notation v = A·x − l with l = observed − computed; this engine writes B·δ + L = V with
+# L = computed − observed, so L = −l, B = A and V = v: his v = −Q_vv·P·l is V = Q_vv·P·L here,
+# Q_vv = P⁻¹ − B·Q·Bᵀ, and his r_i = (Q_vv P)_ii are :func:`redundancy_numbers`.
+
+DANISH_EXPONENTS = (4.4, 3.0)
+"""Exponents d of the Danish weight function: 4.4 in the 2nd iteration, 3.0 from the 3rd on (Hanzl §2.6, line 336)."""
+DANISH_FACTOR = 0.05
+"""The constant 0.05 of the Danish weight function exp(−0.05·t^d) (Hanzl §2.6, line 336)."""
+SNOOPING_CRITICAL = 3.29
+"""Default critical value of the normalised residual (two-sided N(0, 1) at α₀ = 0.1 %, Baarda's usual choice; Hanzl gives none)."""
+_WEIGHT_FLOOR = 1e-12
+
+
+def _positive_number(value, what: str) -> float:
+    if isinstance(value, bool):
+        raise InputError(f"{what} must be a positive number, got {value!r}")
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be a positive number, got {value!r}") from None
+    if not (np.isfinite(v) and v > 0):
+        raise InputError(f"{what} must be a positive finite number, got {value!r}")
+    return v
+
+
+def danish_weight(t, d: float, k: float = DANISH_FACTOR):
+    """The Danish weight function p(v) = exp(−k·t^d) of a standardised residual t = |v√p|/σ₀.
+
+    Hanzl (§2.6, line 336) prints the function without the exponential ("p(v_i) = −0,05 (…)^d",
+    which would give negative weights); the text calls the weight functions exponential (Fig. 2.5)
+    and the Danish method of Krarup and Kubik (as in Kraus's *Photogrammetrie*) uses exp(−0.05·t^d).
+    The new weight of an observation is its original weight times this factor.
+
+    Parameters
+    ----------
+    t : float or array_like
+        Standardised residuals |v_i √p_i| / σ₀ (≥ 0; the absolute value is taken).
+    d : float
+        The exponent, > 0: 4.4 in the 2nd iteration, 3.0 from the 3rd on (:data:`DANISH_EXPONENTS`).
+    k : float
+        The constant, > 0 (0.05).
+
+    Returns
+    -------
+    float or ndarray
+        The weight factor in (0, 1], 1 at t = 0.
+
+    Raises
+    ------
+    InputError
+        NaN/inf residuals, d ≤ 0 or k ≤ 0.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §2.6, Obr. 2.5 (seed 002 lines 334–340).
+
+    Examples
+    --------
+    >>> round(float(danish_weight(2.0, 4.4)), 4), round(float(danish_weight(2.0, 3.0)), 4)
+    (0.348, 0.6703)
+    """
+    d = _positive_number(d, "the exponent d")
+    k = _positive_number(k, "the factor k")
+    t = _floats(t, "standardised residuals")
+    if not np.all(np.isfinite(t)):
+        raise InputError("standardised residuals contain NaN or inf")
+    out = np.exp(-k * np.abs(t) ** d)
+    return float(out) if out.ndim == 0 else out
+
+
+def normalized_residuals(B, V, Q, weights=None, sigma0: float | None = None):
+    """Normalised residuals of data snooping, w_i = |v_i √p_i| / (σ₀ √r_i) (Hanzl §2.6).
+
+    r_i = (Q_vv P)_ii are the redundancy numbers (:func:`redundancy_numbers`) and
+    σ₀² = VᵀPV / (m − n) unless σ₀ is given (an a-priori value). Under the hypothesis of no gross
+    error each w_i is N(0, 1); equivalently w_i = |v_i| / (σ₀ √q_vv,ii). An observation that the
+    others do not check (r_i ≈ 0) gets w_i = NaN: no blunder in it can be seen.
+
+    Parameters
+    ----------
+    B : array_like (m, n)
+        Design matrix at the solution.
+    V : array_like (m,)
+        Residuals.
+    Q : array_like (n, n)
+        Cofactor matrix N⁻¹.
+    weights : array_like (m,), optional
+        Weights p_i (unit if omitted); a full matrix is not supported (correlated observations).
+    sigma0 : float, optional
+        σ₀; estimated from the residuals if omitted (needs m > n).
+
+    Returns
+    -------
+    ndarray (m,)
+
+    Raises
+    ------
+    InputError
+        Shapes that do not match, NaN/inf, non-positive weights or σ₀, a weight matrix, no redundancy.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §2.6 (seed 002 lines 317–325); Chibunichev (2022), §1.8,
+    eq. (1.8.9) (σ₀ = μ).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> B = np.ones((5, 1)); obs = np.array([1.0, 1.1, 0.9, 1.0, 3.0])
+    >>> Q = np.array([[0.2]]); V = B[:, 0] * obs.mean() - obs
+    >>> w = normalized_residuals(B, V, Q)
+    >>> s0 = np.sqrt(V @ V / 4); bool(np.allclose(w, np.abs(V) / (s0 * np.sqrt(0.8))))   # r_i = 1 − 1/5
+    True
+    >>> int(np.argmax(w))
+    4
+    """
+    B = _as_matrix(B, "B", 2)
+    V = _as_matrix(V, "V", 1)
+    m, n = B.shape
+    if V.shape != (m,):
+        raise InputError(f"V must have one residual per row of B ({m}), got {V.shape}")
+    if not np.all(np.isfinite(V)):
+        raise InputError("residuals contain NaN or inf")
+    if weights is not None and np.ndim(weights) == 2:
+        raise InputError("normalised residuals need uncorrelated observations: give the weights as a vector")
+    P = _as_weights(weights, m)
+    r = redundancy_numbers(B, Q, P)
+    p = np.ones(m) if P is None else P
+    if sigma0 is None:
+        if m <= n:
+            raise InputError(f"σ₀ cannot be estimated without redundancy ({m} observations, {n} unknowns)")
+        sigma0 = float(np.sqrt(np.sum(p * V * V) / (m - n)))
+        if sigma0 == 0:
+            return np.zeros(m)
+    else:
+        sigma0 = _positive_number(sigma0, "sigma0")
+    controlled = r > 1e-10
+    w = np.full(m, np.nan)
+    w[controlled] = np.abs(V[controlled] * np.sqrt(p[controlled])) / (sigma0 * np.sqrt(r[controlled]))
+    return w
+
+
+@dataclass
+class RobustIterationRecord:
+    """One pass of a robust adjustment (Hanzl §2.6).
+
+    Attributes
+    ----------
+    iteration : int
+        1 for the first (plain least squares) pass.
+    method : str
+        ``"danish"`` or ``"snooping"``.
+    sigma0 : float
+        σ₀ of the adjustment of this pass.
+    factors : ndarray (m,)
+        Danish: the weight factors p(v) used in this pass (1 in the first); snooping: 1 for the
+        observations in the adjustment, 0 for the rejected ones.
+    exponent : float or None
+        Danish: the d used (None in the first pass).
+    max_w : float or None
+        Snooping: the largest normalised residual of this pass.
+    rejected : tuple of int
+        Observations rejected after this pass (snooping) / so far (Danish: weight factor below the threshold).
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §2.6 (seed 002 lines 313–342).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> RobustIterationRecord(1, "danish", 0.5, np.ones(3)).exponent is None
+    True
+    """
+
+    iteration: int
+    method: str
+    sigma0: float
+    factors: np.ndarray
+    exponent: float | None = None
+    max_w: float | None = None
+    rejected: tuple = ()
+    x: np.ndarray | None = None
+
+
+@dataclass(repr=False)
+class RobustAdjustment(AdjustmentView):
+    """Result of :func:`robust_gauss_newton`: the final adjustment and what was rejected.
+
+    The final adjustment uses the ORIGINAL weights of the observations that were kept (Hanzl
+    §2.6, last sentence); ``plain`` is the ordinary least-squares adjustment of all observations
+    (the first pass), for comparison.
+
+    Attributes
+    ----------
+    adjustment : Adjustment
+        The final least-squares adjustment of the kept observations (its residuals, design,
+        redundancy, … refer to the kept rows only).
+    method : str
+        ``"danish"`` or ``"snooping"``.
+    rejected : ndarray of bool (m,)
+        True for every observation found to be an outlier.
+    residuals : ndarray (m,)
+        Residuals of ALL observations at the final estimate (the rejected ones included).
+    plain : Adjustment
+        Ordinary least squares with every observation.
+    robust_history : list of RobustIterationRecord
+        One record per pass.
+    weight_history : list of ndarray
+        The weights of every pass (original weights × factors; 0 for rejected observations in snooping).
+    normalized : ndarray (m,)
+        Normalised residuals w_i of the final adjustment (NaN for the rejected observations and
+        for observations with r_i ≈ 0).
+    x, mu, std, corr, Q, iterations, history
+        Those of the final adjustment.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §2.6 (seed 002 lines 313–342).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(10.0); y = 2.0 + 0.5 * t + 0.01 * np.sin(7 * t); y[4] += 5.0
+    >>> res = robust_gauss_newton(lambda p: (np.column_stack([np.ones(10), t]), p[0] + p[1] * t - y), [0.0, 0.0])
+    >>> np.flatnonzero(res.rejected).tolist()
+    [4]
+    >>> bool(np.allclose(res.x, np.polyfit(np.delete(t, 4), np.delete(y, 4), 1)[::-1]))   # LS without it
+    True
+    """
+
+    adjustment: Adjustment
+    method: str
+    rejected: np.ndarray
+    residuals: np.ndarray
+    plain: Adjustment
+    robust_history: list
+    weight_history: list
+    normalized: np.ndarray
+
+    @property
+    def x(self) -> np.ndarray:
+        """The adjusted unknowns of the final adjustment."""
+        return self.adjustment.x
+
+    @property
+    def kept(self) -> np.ndarray:
+        """True for the observations in the final adjustment."""
+        return ~self.rejected
+
+    def summary(self) -> str:
+        """A few lines: method, passes, rejected observations, σ₀ of plain LS and of the final adjustment."""
+        bad = np.flatnonzero(self.rejected)
+        shown = ", ".join(str(i) for i in bad[:20]) + (" …" if bad.size > 20 else "")
+        lines = [f"Robust adjustment (Hanzl §2.6, {self.method}): {len(self.robust_history)} passes, "
+                 f"{bad.size} of {self.rejected.size} observations rejected" + (f" ({shown})" if bad.size else ""),
+                 f"  sigma0: plain LS {float(self.plain.mu):.6g}, final {float(self.adjustment.mu):.6g}"]
+        return "\n".join(lines)
+
+    __repr__ = summary
+
+
+def _grouped(mask_or_values, group: int, reduce):
+    return reduce(np.asarray(mask_or_values).reshape(-1, group), axis=1)
+
+
+def robust_gauss_newton(linearize: Callable[[np.ndarray], tuple], x0, weights=None, *, method: str = "danish",
+                        sigma0: float | None = None, exponents=DANISH_EXPONENTS, k: float = DANISH_FACTOR,
+                        reject_below: float = 0.01, critical: float = SNOOPING_CRITICAL, group: int = 1,
+                        max_passes: int = 30, pass_tol: float = 1e-4, tol=1e-10, max_iter: int = 50,
+                        names: Sequence[str] = (),
+                        progress: Callable[[RobustIterationRecord], None] | None = None) -> RobustAdjustment:
+    """Least squares resistant to gross errors: data snooping or the Danish method (Hanzl §2.6).
+
+    Every pass is an ordinary :func:`gauss_newton` adjustment; only the weights change.
+
+    * ``method="snooping"`` — adjust, compute the normalised residuals
+      w_i = |v_i √p_i| / (σ₀ √r_i) (:func:`normalized_residuals`), reject the observation (or the
+      group, e.g. both coordinates of a point) with the largest w if it exceeds ``critical``, and
+      repeat ("the computation has to be repeated", drawback 4) until no w exceeds it. With σ₀
+      estimated from the same residuals (Hanzl's σ₀² = vᵀPv/(m − n)) no w_i can exceed √(m − n)
+      (drawback 1: σ₀ is inflated by the outliers); give an a-priori ``sigma0`` when the
+      redundancy is small.
+    * ``method="danish"`` — pass 1 is plain least squares; in pass ν ≥ 2 every observation gets
+      the weight p_i·exp(−k·(|v_i √p_i| / σ₀)^d) from the residuals and σ₀ of pass ν − 1
+      (σ₀² = Σ p_i f_i v_i² / Σ f_i r_i with the factors f_i and redundancy numbers r_i of that pass:
+      a down-weighted observation leaves the redundancy as it leaves the sum), with
+      d = ``exponents[0]`` (4.4) in pass 2 and ``exponents[1]`` (3.0) from pass 3 on; the passes
+      stop when no weight factor changes by more than ``pass_tol``, or when neither the estimate
+      (by ``tol``) nor the set of flagged observations changes any more (a noise-free fit, whose
+      factors only follow rounding noise). Observations whose factor is
+      below ``reject_below`` (of a group: any of them) are the outliers.
+
+    Either way the outliers are removed and the final adjustment uses the original weights
+    ("po vyloučení identifikovaných měření se vyrovnání provede s původními vahami").
+
+    Parameters
+    ----------
+    linearize : callable
+        ``linearize(x) -> (B, L)`` as for :func:`gauss_newton` (B·δ + L = V, L computed − observed).
+    x0 : array_like (n,)
+        Approximate values.
+    weights : array_like (m,), optional
+        Original weights p_i (unit if omitted). A full weight matrix is refused: robust
+        re-weighting needs uncorrelated observations.
+    method : {"danish", "snooping"}
+    sigma0 : float, optional
+        A-priori σ₀ (e.g. 1 with p_i = 1/σ_i²); estimated in every pass as √(VᵀPV/(m − n)) if omitted.
+    exponents : (float, float)
+        Danish exponents d for pass 2 and passes ≥ 3, both > 0.
+    k : float
+        Danish constant (0.05).
+    reject_below : float
+        Danish: weight factor below which an observation counts as an outlier, in (0, 1).
+    critical : float
+        Snooping: critical normalised residual (default 3.29).
+    group : int
+        Observations are rejected in groups of this many consecutive rows (2 for the x, y of an
+        image point); m must be a multiple of it.
+    max_passes : int
+        Passes allowed before :class:`ConvergenceError`.
+    pass_tol : float
+        Danish: the passes stop when max |Δfactor| < pass_tol.
+    tol, max_iter, names
+        Passed to every :func:`gauss_newton`.
+    progress : callable, optional
+        Called with a :class:`RobustIterationRecord` after every pass.
+
+    Returns
+    -------
+    RobustAdjustment
+        The final adjustment (``adjustment``, ``x``, ``mu`` …), the ``rejected`` mask, the
+        residuals of all observations, ``plain`` LS, the pass records and weight history.
+
+    Raises
+    ------
+    InputError
+        Bad options (unknown method, d ≤ 0, …), a weight matrix, NaN/inf, no redundancy (m ≤ n),
+        m not a multiple of ``group``.
+    DegenerateGeometryError
+        So many observations rejected that the rest cannot determine the unknowns (or a singular
+        normal matrix in a pass).
+    ConvergenceError
+        A pass did not converge, or the Danish weights did not settle in ``max_passes``.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §2.6 (seed 002 lines 313–342); Chibunichev (2022), §1.8,
+    eqs. (1.8.5)–(1.8.10) (each pass).
+
+    Examples
+    --------
+    A straight line with one blunder (σ = 0.01 known a priori for data snooping: with σ₀
+    estimated from the same 10 residuals no w_i can exceed √(m − n) = √8 < 3.29):
+
+    >>> import numpy as np
+    >>> t = np.arange(10.0); y = 2.0 + 0.5 * t + 0.01 * np.sin(7 * t); y[6] -= 3.0
+    >>> lin = lambda p: (np.column_stack([np.ones(10), t]), p[0] + p[1] * t - y)
+    >>> for method, s0 in (("danish", None), ("snooping", 0.01)):
+    ...     res = robust_gauss_newton(lin, [0.0, 0.0], method=method, sigma0=s0)
+    ...     print(method, np.flatnonzero(res.rejected).tolist(), res.x.round(2))
+    danish [6] [2.01 0.5 ]
+    snooping [6] [2.01 0.5 ]
+    """
+    if method not in ("danish", "snooping"):
+        raise InputError(f"method must be 'danish' or 'snooping', got {method!r}")
+    if not callable(linearize):
+        raise InputError("linearize must be a callable x -> (B, L)")
+    if isinstance(exponents, (str, bytes)) or not hasattr(exponents, "__len__") or len(exponents) != 2:
+        raise InputError(f"exponents must be two positive numbers (d of the 2nd and of later passes), "
+                         f"got {exponents!r}")
+    d2, d3 = (_positive_number(d, "the Danish exponent d") for d in exponents)
+    k = _positive_number(k, "the Danish factor k")
+    reject_below = _positive_number(reject_below, "reject_below")
+    if reject_below >= 1:
+        raise InputError(f"reject_below must lie in (0, 1), got {reject_below}")
+    critical = _positive_number(critical, "the critical value")
+    if sigma0 is not None:
+        sigma0 = _positive_number(sigma0, "sigma0")
+    if isinstance(group, bool) or not isinstance(group, (int, np.integer)) or group < 1:
+        raise InputError(f"group must be a positive integer, got {group!r}")
+    if isinstance(max_passes, bool) or not isinstance(max_passes, (int, np.integer)) or max_passes < 2:
+        raise InputError(f"max_passes must be an integer ≥ 2, got {max_passes!r}")
+    pass_tol = _positive_number(pass_tol, "pass_tol")
+    try:
+        x = np.array(x0, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"the approximate values must be numbers: {exc}") from None
+    if x.ndim != 1 or not np.all(np.isfinite(x)):
+        raise InputError("the approximate values must be a 1-D vector without NaN or inf")
+    B0, L0 = linearize(x)
+    B0, L0 = _floats(B0, "B"), _floats(L0, "L")
+    if B0.ndim != 2 or L0.ndim != 1 or B0.shape[0] != L0.shape[0] or B0.shape[1] != x.size:
+        raise InputError(f"linearize must return B (m×{x.size}) and L (m,), got {B0.shape} and {L0.shape}")
+    m, n = B0.shape
+    if not (np.all(np.isfinite(B0)) and np.all(np.isfinite(L0))):
+        raise InputError("the correction equations contain NaN or inf")
+    if weights is not None and np.ndim(weights) == 2:
+        raise InputError("a robust adjustment re-weights single observations: give the weights as a vector "
+                         "(uncorrelated observations), not a matrix")
+    P = _as_weights(weights, m)
+    p = np.ones(m) if P is None else P
+    if m % group:
+        raise InputError(f"{m} observations cannot be split into groups of {group}")
+    if m <= n:
+        raise InputError(f"a robust adjustment needs redundant observations: {m} observations, {n} unknowns")
+
+    def run(factors, start):
+        keep = factors > 0
+        if int(keep.sum()) < n or (int(keep.sum()) <= n and method == "snooping"):
+            raise DegenerateGeometryError(
+                f"the robust adjustment rejected {m - int(keep.sum())} of {m} observations: the remaining "
+                f"{int(keep.sum())} cannot determine {n} unknowns with redundancy")
+
+        def lin(xx):
+            B, L = linearize(xx)
+            B, L = np.asarray(B, dtype=float), np.asarray(L, dtype=float)
+            return B[keep], L[keep]
+
+        return gauss_newton(lin, start, p[keep] * factors[keep], tol=tol, max_iter=max_iter, names=names), keep
+
+    def all_residuals(adj):
+        B, L = linearize(adj.x)
+        return np.asarray(L, dtype=float) + 0.0        # V at the estimate (the last δ is negligible)
+
+    def sigma_of(adj, keep, factors):
+        # σ₀² = Σ p_i f_i v_i² / Σ f_i r_i: each observation counts in the redundancy with its
+        # weight factor f_i. (Counting a down-weighted observation fully in m − n would shrink σ₀
+        # pass by pass until good observations are down-weighted too; ignoring the partly
+        # down-weighted ones keeps σ₀ inflated by the outliers.) Plain LS: VᵀPV/(m − n).
+        if sigma0 is not None:
+            return sigma0
+        f = factors[keep]
+        r = adj.redundancy
+        dof = float(np.sum(f * r))
+        V = adj.residuals
+        return float(np.sqrt(np.sum(p[keep] * f * V * V) / dof)) if dof > 1e-12 else float("nan")
+
+    try:
+        tol_x = np.broadcast_to(np.asarray(tol, dtype=float), x.shape)
+    except ValueError:
+        raise InputError(f"tol: one value or one per unknown ({x.size}), got shape {np.shape(tol)}") from None
+    history, weight_history = [], []
+    factors = np.ones(m)
+    plain, keep = run(factors, x)
+    current = plain
+    s0 = sigma_of(plain, keep, factors)
+
+    def emit(record):
+        history.append(record)
+        weight_history.append(p * factors)
+        if progress is not None:
+            progress(record)
+
+    if method == "danish":
+        emit(RobustIterationRecord(1, method, s0, factors.copy(), None, x=plain.x.copy()))
+        for it in range(2, max_passes + 1):
+            d = d2 if it == 2 else d3
+            if not (np.isfinite(s0) and s0 > 0):
+                break                                           # a perfect fit: nothing to re-weight
+            t = np.abs(all_residuals(current) * np.sqrt(p)) / s0
+            new = np.maximum(np.exp(-k * t ** d), _WEIGHT_FLOOR)
+            change = float(np.max(np.abs(new - factors)))
+            factors = new
+            if int(np.sum(factors >= reject_below)) <= n:
+                raise DegenerateGeometryError(
+                    f"the Danish method down-weighted {int(np.sum(factors < reject_below))} of {m} observations "
+                    f"below {reject_below}: the remaining ones cannot determine {n} unknowns with redundancy")
+            current, keep = run(factors, current.x)
+            s0 = sigma_of(current, keep, factors)
+            flagged = np.flatnonzero(np.repeat(_grouped(factors < reject_below, group, np.any), group))
+            emit(RobustIterationRecord(it, method, s0, factors.copy(), d, rejected=tuple(flagged.tolist()),
+                                       x=current.x.copy()))
+            settled_x = bool(np.all(np.abs(current.x - history[-2].x) < tol_x))
+            if it >= 3 and (change < pass_tol or (settled_x and history[-1].rejected == history[-2].rejected)):
+                break
+        else:
+            raise ConvergenceError(f"the Danish weights did not settle in {max_passes} passes", history)
+        rejected = np.repeat(_grouped(factors < reject_below, group, np.any), group)
+    else:
+        rejected = np.zeros(m, bool)
+        for it in range(1, max_passes + 1):
+            kept = ~rejected
+            B, _ = current.design
+            w_kept = normalized_residuals(B, current.residuals, current.Q, p[kept], sigma0)
+            w = np.full(m, np.nan)
+            w[kept] = w_kept
+            wg = _grouped(np.where(np.isnan(w), -np.inf, w), group, np.max)
+            worst = int(np.argmax(wg))
+            max_w = float(wg[worst])
+            done = not (max_w > critical)
+            if not done:
+                rejected[worst * group:(worst + 1) * group] = True
+            emit(RobustIterationRecord(it, method, s0, (~rejected).astype(float), max_w=max_w,
+                                       rejected=tuple(np.flatnonzero(rejected).tolist()), x=current.x.copy()))
+            if done:
+                break
+            factors = (~rejected).astype(float)
+            current, keep = run(factors, current.x)
+            s0 = sigma_of(current, keep, factors)
+        else:
+            raise ConvergenceError(f"data snooping still rejects after {max_passes} passes", history)
+    final, keep = run((~rejected).astype(float), current.x)
+    B, _ = final.design
+    w = np.full(m, np.nan)
+    if int(keep.sum()) > n:
+        w[keep] = normalized_residuals(B, final.residuals, final.Q, p[keep], sigma0)
+    return RobustAdjustment(final, method, rejected, all_residuals(final), plain, history, weight_history, w)
 
 
 # --- Chapter 3, §3.5: block-structured normal equations and their reduction ---------------------

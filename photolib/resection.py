@@ -11,6 +11,8 @@
   between two rays in object space and in image space, φ = cos ASB − cos aSb = 0 (1.9.1),
   linearised as (1.9.2). :func:`angle_equation_count` and :func:`independent_angle_equations`
   give the counts n(n−1)/2 and 2n−3 the book states.
+* Hanzl §2.6 :func:`robust_space_resection` — the same adjustment resistant to blunders (data
+  snooping or the Danish method of :func:`photolib.lsq.robust_gauss_newton`), points rejected whole.
 * :func:`implied_noise` — the noise-free image coordinates of a known pose and the noise a
   data set contains (how the book's §1.8 example can be regenerated).
 
@@ -29,13 +31,13 @@ from . import derivations
 from .camera import (ExteriorOrientation, InteriorOrientation, _expect, as_point_pairs, as_points,
                      correct_distortion)
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
-from .lsq import Adjustment, AdjustmentView, IterationRecord, gauss_newton, point_weights
+from .lsq import Adjustment, AdjustmentView, IterationRecord, gauss_newton, point_weights, robust_gauss_newton
 from .rotation import _numbers, check_order
 from .single_image import camera_coordinates, project
 
 __all__ = ["ResectionResult", "AngleResectionResult", "approximate_exterior_orientation", "space_resection",
            "angle_equation_count", "independent_angle_equations", "resection_by_angles", "implied_noise",
-           "DEFAULT_TOL"]
+           "DEFAULT_TOL", "RobustResectionResult", "robust_space_resection"]
 
 EO_NAMES = ExteriorOrientation.NAMES
 CENTER_NAMES = ("Xs", "Ys", "Zs")
@@ -386,6 +388,145 @@ def space_resection(XYZ, xy, io: InteriorOrientation, eo0=None, order: str = "ka
         raise ConvergenceError("space resection converged to a pose with control points behind the camera "
                                "(Z* ≥ 0); give better approximate values", adj.history)
     return ResectionResult(eo, adj, jacobian)
+
+
+# --- Hanzl §2.6: robust resection ---------------------------------------------------------------
+@dataclass(repr=False)
+class RobustResectionResult(AdjustmentView):
+    """Result of :func:`robust_space_resection`: the EO from the points kept, and the rejected points.
+
+    Attributes
+    ----------
+    eo : ExteriorOrientation
+        From the final adjustment (original weights, outliers removed).
+    plain_eo : ExteriorOrientation
+        Ordinary least squares with every point (the first pass), for comparison.
+    robust : photolib.lsq.RobustAdjustment
+        The robust adjustment (pass records, weight history, normalised residuals).
+    adjustment : photolib.lsq.Adjustment
+        The final adjustment (of the kept points).
+    rejected_points : ndarray of bool (n,)
+        True for the control points found to be outliers (both coordinates are removed).
+    mu, std, corr, Q, iterations, history
+        Those of the final adjustment.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §2.6 (seed 002 lines 313–342); Chibunichev (2022), §1.8.
+
+    Examples
+    --------
+    >>> io = InteriorOrientation(100.0)
+    >>> g = np.linspace(0.0, 2000.0, 4)
+    >>> XYZ = np.column_stack([np.repeat(g, 4), np.tile(g, 4), 10.0 * np.arange(16) % 30])
+    >>> xy = project(XYZ, ExteriorOrientation.from_degrees(1000, 1000, 1500, 2, 5, 7), io)
+    >>> xy = xy + 0.002 * np.sin(np.arange(32.0)).reshape(16, 2); xy[5, 0] += 0.3
+    >>> res = robust_space_resection(XYZ, xy, io)
+    >>> np.flatnonzero(res.rejected_points).tolist()
+    [5]
+    """
+
+    eo: ExteriorOrientation
+    plain_eo: ExteriorOrientation
+    robust: object
+    adjustment: Adjustment
+    rejected_points: np.ndarray
+
+    @property
+    def residuals(self) -> np.ndarray:
+        """v_x, v_y of every point (the rejected ones included) at the final EO, (n, 2), mm."""
+        return self.robust.residuals.reshape(-1, 2)
+
+    def summary(self) -> str:
+        """The robust summary and the final EO."""
+        head = self.robust.summary().replace("Robust adjustment", "Robust space resection")
+        bad = np.flatnonzero(self.rejected_points).tolist()
+        v = self.eo.vector
+        return "\n".join([head, f"  rejected points: {bad}",
+                          f"  X_S, Y_S, Z_S = {v[0]:.3f}, {v[1]:.3f}, {v[2]:.3f} m",
+                          "  ω, α, κ = " + ", ".join(f"{np.degrees(a):.4f}°" for a in v[3:])])
+
+    __repr__ = summary
+
+
+def robust_space_resection(XYZ, xy, io: InteriorOrientation, eo0=None, order: str = "kaw", weights=None,
+                           method: str = "danish", sigma0: float | None = None, tol=None, max_iter: int = 50,
+                           **robust_options) -> RobustResectionResult:
+    """Space resection resistant to blunders: data snooping or the Danish method (Hanzl §2.6).
+
+    The same correction equations as :func:`space_resection` (the sympy Jacobian of (1.8.2)),
+    adjusted by :func:`photolib.lsq.robust_gauss_newton` with the two coordinates of a point as one
+    group: a point is rejected as a whole. The final EO is adjusted with the original weights of
+    the points kept.
+
+    Parameters
+    ----------
+    XYZ, xy, io, eo0, order, weights, tol, max_iter
+        As for :func:`space_resection` (the derived partials are used).
+    method : {"danish", "snooping"}
+    sigma0 : float, optional
+        A-priori σ₀ in the units of √p·xy (mm with unit weights); estimated if omitted.
+    **robust_options
+        Passed to :func:`photolib.lsq.robust_gauss_newton` (``exponents``, ``k``,
+        ``reject_below``, ``critical``, ``max_passes``, ``progress`` …).
+
+    Returns
+    -------
+    RobustResectionResult
+
+    Raises
+    ------
+    InputError
+        As :func:`space_resection`; fewer than 4 points (no redundancy); bad robust options.
+    DegenerateGeometryError
+        Collinear control points; too many points rejected to determine the EO.
+    ConvergenceError
+        A pass or the re-weighting did not converge.
+
+    References
+    ----------
+    Hanzl, Fotogrammetrie, Modul 01, §2.6 (seed 002 lines 313–342) and §3.2.1 (resection);
+    Chibunichev (2022), §1.8, eqs. (1.8.2)–(1.8.10).
+
+    Examples
+    --------
+    >>> io = InteriorOrientation(100.0)
+    >>> g = np.linspace(0.0, 2000.0, 4)
+    >>> XYZ = np.column_stack([np.repeat(g, 4), np.tile(g, 4), 10.0 * np.arange(16) % 30])
+    >>> xy = project(XYZ, ExteriorOrientation.from_degrees(1000, 1000, 1500, 2, 5, 7), io)
+    >>> xy[[3, 9], 1] -= 0.4
+    >>> res = robust_space_resection(XYZ, xy, io, method="snooping", sigma0=0.005)
+    >>> np.flatnonzero(res.rejected_points).tolist(), res.eo.vector[:3].round(3)
+    ([3, 9], array([1000., 1000., 1500.]))
+    """
+    check_order(order)
+    XYZ, xy = _control_points(XYZ, xy, io)
+    if len(XYZ) < 4:
+        raise InputError(f"a robust resection needs redundancy: at least 4 control points, got {len(XYZ)}")
+    P = point_weights(weights, len(XYZ))
+    if eo0 is None:
+        eo0 = approximate_exterior_orientation(XYZ, xy, io, order)
+    if isinstance(eo0, ExteriorOrientation):
+        x0 = (eo0 if eo0.order == order else eo0.with_order(order)).vector
+    else:
+        x0 = ExteriorOrientation.from_vector(eo0, order).vector
+    if np.any(camera_coordinates(XYZ, ExteriorOrientation.from_vector(x0, order))[:, 2] >= 0):
+        raise InputError("the approximate exterior orientation puts control points behind the camera (Z* >= 0)")
+    tol = _tolerance(DEFAULT_TOL if tol is None else tol, 6)
+    max_iter = _iterations(max_iter)
+    linearize = _collinearity_linearizer(XYZ, xy, io, order, "derived")
+    try:
+        rob = robust_gauss_newton(linearize, x0, P, method=method, sigma0=sigma0, group=2, tol=tol,
+                                  max_iter=max_iter, names=EO_NAMES, **robust_options)
+    except TypeError as err:
+        raise InputError(f"robust_space_resection: {err}") from None
+    eo = ExteriorOrientation.from_vector(rob.x, order)
+    kept = ~rob.rejected[0::2]
+    if np.any(camera_coordinates(XYZ[kept], eo)[:, 2] >= 0):
+        raise ConvergenceError("the robust resection converged to a pose with control points behind the camera "
+                               "(Z* ≥ 0); give better approximate values", rob.adjustment.history)
+    return RobustResectionResult(eo, ExteriorOrientation.from_vector(rob.plain.x, order), rob, rob.adjustment,
+                                 rob.rejected[0::2].copy())
 
 
 # --- §1.9 ---------------------------------------------------------------------------------------
