@@ -42,6 +42,8 @@ Modules, by topic:
 * :mod:`~photolib.derivations.direct_orientation` — the boresight-misalignment calibration
   (6 parameters), Hanzl §7.3.
 * :mod:`~photolib.derivations.plane` — the congruent plane transformation of Hanzl's §2.5.
+* :mod:`~photolib.derivations.hanzl_foundations` — Hanzl §2: his rotation table, collinearity,
+  inverse, DLT and plane projective forms, the affine decomposition and the robust-adjustment formulas.
 * :mod:`~photolib.derivations.parallax` — Hanzl §3: the first-order y-parallax of relative
   orientation, the model deformation, printed vs derived formulas of §3.1–§3.2.6.
 * :mod:`~photolib.derivations.hanzl_at` — Hanzl §4.4 and §5.4.1: Ebner's 12 orthogonal parameters
@@ -63,9 +65,10 @@ Examples
 (2, 6)
 """
 
-from . import (bundle, collinearity, coplanarity, direct_orientation, distortion, estimation, georef, gnss, hanzl_at,
-               intersection, lidar, matching, mockup, model, orthophoto, parallax, planar_target, plane, projective,
-               quaternion, radar, registration, rotation, scanner, shapes, similarity, symbols, terrestrial)
+from . import (bundle, collinearity, coplanarity, direct_orientation, distortion, estimation,
+               georef, gnss, hanzl_at, hanzl_foundations, intersection, lidar, matching, mockup,
+               model, orthophoto, parallax, planar_target, plane, projective, quaternion, radar,
+               registration, rotation, scanner, shapes, similarity, symbols, terrestrial)
 from .bundle import *  # noqa: F401,F403
 from .collinearity import *  # noqa: F401,F403
 from .coplanarity import *  # noqa: F401,F403
@@ -76,6 +79,7 @@ from .estimation import *  # noqa: F401,F403
 from .georef import *  # noqa: F401,F403
 from .gnss import *  # noqa: F401,F403
 from .hanzl_at import *  # noqa: F401,F403
+from .hanzl_foundations import *  # noqa: F401,F403
 from .intersection import *  # noqa: F401,F403
 from .lidar import *  # noqa: F401,F403
 from .matching import *  # noqa: F401,F403
