@@ -72,7 +72,6 @@ def least_squares_solution():
     return {"A": A, "P": P, "l": l, "x": sp.Matrix([solution[xi] for xi in x])}
 
 
-@lru_cache(maxsize=None)
 def sequential_blocks(m2: int = 1):
     """Sequential least squares derived as batch minus first-block solutions (Hanzl §7.3.2).
 
@@ -105,8 +104,13 @@ def sequential_blocks(m2: int = 1):
     True
     """
     from ..errors import InputError
-    if m2 not in (1, 2):
-        raise InputError(f"m2 must be 1 or 2, got {m2!r}")
+    if isinstance(m2, bool) or not isinstance(m2, int) or m2 not in (1, 2):
+        raise InputError(f"m2 must be the integer 1 or 2, got {m2!r}")
+    return _sequential_blocks(m2)
+
+
+@lru_cache(maxsize=None)            # validated above: the cache would take 1.0 or True for 1
+def _sequential_blocks(m2: int) -> dict:
     N1, h1 = _symmetric("n", 2), _general("h", 2, 1)
     A2, P2, l2 = _general("b", m2, 2), _diagonal("w", m2), _general("k", m2, 1)
     N2, h2 = A2.T * P2 * A2, A2.T * P2 * l2
@@ -157,7 +161,6 @@ def kalman_update_batch():
             "x_hat": x_hat, "Q_hat": Q_hat}
 
 
-@lru_cache(maxsize=None)
 def transition_series(order: int = 2):
     """e^{FΔt} for a constant dynamic matrix F and its Taylor series to ``order`` (Hanzl §7.3.3.1).
 
@@ -191,8 +194,13 @@ def transition_series(order: int = 2):
     True
     """
     from ..errors import InputError
-    if not isinstance(order, int) or order < 1:
+    if isinstance(order, bool) or not isinstance(order, int) or order < 1:
         raise InputError(f"order must be an integer ≥ 1, got {order!r}")
+    return _transition_series(order)
+
+
+@lru_cache(maxsize=None)            # validated above: the cache would take 2.0 for 2
+def _transition_series(order: int) -> dict:
     beta, dt = sp.symbols("beta dt", positive=True)
     F = sp.Matrix([[0, 1], [0, -beta]])
     T = (F * dt).exp().applyfunc(sp.simplify)

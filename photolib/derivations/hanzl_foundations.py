@@ -397,7 +397,6 @@ def affine_forms() -> dict:
     return {"geometric": A, "printed_decomposition": rel, "symbols": (qx, qy, a, da)}
 
 
-@lru_cache(maxsize=None)
 def least_squares_forms(m: int = 3, n: int = 2) -> dict:
     """§2.6: the residuals of least squares as printed (line 317) and derived, and Σ r_i.
 
@@ -437,6 +436,11 @@ def least_squares_forms(m: int = 3, n: int = 2) -> dict:
             raise InputError(f"m and n must be integers, got {m!r}, {n!r}")
     if not 1 <= n < m <= 5:
         raise InputError(f"need 1 ≤ n < m ≤ 5 (a small symbolic problem), got m = {m}, n = {n}")
+    return _least_squares_forms(m, n)
+
+
+@lru_cache(maxsize=None)            # validated above: the cache would take 3.0 or True for 3 or 1
+def _least_squares_forms(m: int, n: int) -> dict:
     A = sp.Matrix(m, n, lambda i, j: sp.Symbol(f"a{i + 1}{j + 1}", real=True))
     p = sp.symbols(f"p1:{m + 1}", positive=True)
     P = sp.diag(*p)

@@ -113,6 +113,8 @@ CASES = [
     Case(est.kalman_update_batch, (), raises=None, check=lambda d: d["Q_hat"].shape == (2, 2), why="no input"),
     Case(est.transition_series, (0,), raises=InputError, why="order 0"),
     Case(est.transition_series, (1.5,), raises=InputError, why="order not an integer"),
+    Case(est.transition_series, (2.0,), raises=InputError, why="order a float equal to a cached integer"),
+    Case(est.sequential_blocks, (True,), raises=InputError, why="m2 a bool equal to a cached 1"),
     Case(est.position_integral, (), raises=None, check=lambda d: "r" in d, why="no input"),
 ]
 
