@@ -991,6 +991,24 @@ def _check_spread(xy, what):
         raise DegenerateGeometryError(f"{what} lie on one line; the problem is singular")
 
 
+def _relative_orientation_inputs(xy1, xy2, io1, io2, system):
+    """Checked inputs of a relative orientation: the system, the interior orientations (io2 = io1
+    when None) and at least five corresponding points spread over both images."""
+    if system not in RO_NAMES:
+        raise InputError(f"unknown system {system!r}; use 'dependent' (2.7.5) or 'independent' (2.7.4)")
+    io2 = io1 if io2 is None else io2
+    _check_type(io1, InteriorOrientation, "io1")
+    _check_type(io2, InteriorOrientation, "io2")
+    xy1 = as_points(xy1, 2, "image-1 coordinates")
+    xy2 = as_points(xy2, 2, "image-2 coordinates")
+    _same_length(xy1, xy2)
+    if len(xy1) < 5:
+        raise InputError(f"relative orientation needs at least 5 corresponding points, got {len(xy1)}")
+    _check_spread(xy1, "the points of image 1")
+    _check_spread(xy2, "the points of image 2")
+    return xy1, xy2, io2
+
+
 def relative_orientation(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrientation | None = None,
                          system: str = "dependent", order: str = DEFAULT_ORDER, initial=None,
                          weights=None, tol: float = 1e-12, max_iter: int = 50,
@@ -1068,18 +1086,7 @@ def relative_orientation(xy1, xy2, io1: InteriorOrientation, io2: InteriorOrient
     (True, 12)
     """
     check_order(order)
-    if system not in RO_NAMES:
-        raise InputError(f"unknown system {system!r}; use 'dependent' (2.7.5) or 'independent' (2.7.4)")
-    io2 = io1 if io2 is None else io2
-    _check_type(io1, InteriorOrientation, "io1")
-    _check_type(io2, InteriorOrientation, "io2")
-    xy1 = as_points(xy1, 2, "image-1 coordinates")
-    xy2 = as_points(xy2, 2, "image-2 coordinates")
-    _same_length(xy1, xy2)
-    if len(xy1) < 5:
-        raise InputError(f"relative orientation needs at least 5 corresponding points, got {len(xy1)}")
-    _check_spread(xy1, "the points of image 1")
-    _check_spread(xy2, "the points of image 2")
+    xy1, xy2, io2 = _relative_orientation_inputs(xy1, xy2, io1, io2, system)
     r1, r2 = image_vector(xy1, io1), image_vector(xy2, io2)
     data = (r1[:, 0], r1[:, 1], io1.f, r2[:, 0], r2[:, 1], io2.f)
     res_fn, jac_fn = derivations.coplanarity_model(system, order).compile()
@@ -2123,20 +2130,9 @@ def relative_orientation_parallax(xy1, xy2, io1: InteriorOrientation, io2: Inter
     >>> bool(np.allclose([ro.b_y, ro.b_z, ro.omega2, ro.alpha2, ro.kappa2], 0, atol=1e-12))
     True
     """
-    if system not in RO_NAMES:
-        raise InputError(f"unknown system {system!r}; use 'dependent' or 'independent'")
-    io2 = io1 if io2 is None else io2
-    _check_type(io1, InteriorOrientation, "io1")
-    _check_type(io2, InteriorOrientation, "io2")
     if not isinstance(iterate, (bool, np.bool_)):
         raise InputError(f"iterate must be True or False, got {iterate!r}")
-    xy1 = as_points(xy1, 2, "image-1 coordinates")
-    xy2 = as_points(xy2, 2, "image-2 coordinates")
-    _same_length(xy1, xy2)
-    if len(xy1) < 5:
-        raise InputError(f"relative orientation needs at least 5 corresponding points, got {len(xy1)}")
-    _check_spread(xy1, "the points of image 1")
-    _check_spread(xy2, "the points of image 2")
+    xy1, xy2, io2 = _relative_orientation_inputs(xy1, xy2, io1, io2, system)
     c = float(io1.f)
     r1, r2 = image_vector(xy1, io1), image_vector(xy2, io2)
     model = _parallax.y_parallax_model(system)

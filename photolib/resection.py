@@ -259,6 +259,16 @@ def approximate_exterior_orientation(XYZ, xy, io: InteriorOrientation, order: st
 
 
 # --- §1.8 ---------------------------------------------------------------------------------------
+def _start_vector(eo0, XYZ, xy, io, order: str) -> np.ndarray:
+    """The start values of a resection in ``order``: the given orientation (an
+    ExteriorOrientation in any order, or a 6-vector) or, when None, the approximation of §1.9."""
+    if eo0 is None:
+        eo0 = approximate_exterior_orientation(XYZ, xy, io, order)
+    if isinstance(eo0, ExteriorOrientation):
+        return (eo0 if eo0.order == order else eo0.with_order(order)).vector
+    return ExteriorOrientation.from_vector(eo0, order).vector
+
+
 def _collinearity_linearizer(XYZ, xy, io: InteriorOrientation, order: str = "kaw", jacobian: str = "derived"):
     """Internal: ``linearize(p) -> (B, L)`` of (1.8.5) for the EO vector p = (X_S, Y_S, Z_S, ω, α, κ).
 
@@ -345,12 +355,7 @@ def space_resection(XYZ, xy, io: InteriorOrientation, eo0=None, order: str = "ka
         raise InputError("the printed partials of (1.8.3) are written for the κ–α–ω matrix (1.3.5): use order='kaw'")
     XYZ, xy = _control_points(XYZ, xy, io)
     P = point_weights(weights, len(XYZ))
-    if eo0 is None:
-        eo0 = approximate_exterior_orientation(XYZ, xy, io, order)
-    if isinstance(eo0, ExteriorOrientation):
-        x0 = (eo0 if eo0.order == order else eo0.with_order(order)).vector
-    else:
-        x0 = ExteriorOrientation.from_vector(eo0, order).vector
+    x0 = _start_vector(eo0, XYZ, xy, io, order)
     tol = _tolerance(DEFAULT_TOL if tol is None else tol, 6)
     max_iter = _iterations(max_iter)
     linearize = _collinearity_linearizer(XYZ, xy, io, order, jacobian)
@@ -504,12 +509,7 @@ def robust_space_resection(XYZ, xy, io: InteriorOrientation, eo0=None, order: st
     if len(XYZ) < 4:
         raise InputError(f"a robust resection needs redundancy: at least 4 control points, got {len(XYZ)}")
     P = point_weights(weights, len(XYZ))
-    if eo0 is None:
-        eo0 = approximate_exterior_orientation(XYZ, xy, io, order)
-    if isinstance(eo0, ExteriorOrientation):
-        x0 = (eo0 if eo0.order == order else eo0.with_order(order)).vector
-    else:
-        x0 = ExteriorOrientation.from_vector(eo0, order).vector
+    x0 = _start_vector(eo0, XYZ, xy, io, order)
     if np.any(camera_coordinates(XYZ, ExteriorOrientation.from_vector(x0, order))[:, 2] >= 0):
         raise InputError("the approximate exterior orientation puts control points behind the camera (Z* >= 0)")
     tol = _tolerance(DEFAULT_TOL if tol is None else tol, 6)
