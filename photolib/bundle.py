@@ -52,8 +52,10 @@ import numpy as np
 import scipy.linalg  # noqa: F401 — imported here so that the solver's local imports cost nothing
 import scipy.sparse.csgraph  # noqa: F401 — (reverse Cuthill–McKee of the block pattern)
 import scipy.sparse.linalg  # noqa: F401
+from scipy.special import stdtrit
 
 from . import _bundle_generated
+from . import additional_parameters as apm
 from .camera import ExteriorOrientation, ExteriorOrientations, InteriorOrientation, correct_distortion
 from .errors import ConvergenceError, DegenerateGeometryError, InputError, PointBehindCameraError
 from .lsq import (BlockCorrectionEquations, GlobalBlockCorrectionEquations, block_equations_dense, block_gauss_newton,
@@ -1410,7 +1412,6 @@ class _APSetup:
     tolerances: tuple
 
     def basis(self, xy):
-        from . import additional_parameters as apm
         return apm.ap_basis(self.model, xy, **self.kwargs)[:, :, list(self.index)]
 
 
@@ -1419,7 +1420,6 @@ def _ap_setup(model, names, base, r0, io0):
         if names is not None or base is not None or r0 is not None:
             raise InputError("ap_names, ap_base and ap_r0 need additional_parameters= (the AP model)")
         return None
-    from . import additional_parameters as apm
     all_names = apm.parameter_names(model)
     names = all_names if names is None else tuple(names)
     bad = [nm for nm in names if nm not in all_names]
@@ -1685,7 +1685,6 @@ def additional_parameter_tests(result: SelfCalibrationResult, *, alpha: float = 
         raise InputError("additional_parameter_tests needs a self-calibration result with additional_parameters")
     if not 0 < alpha < 1 or not 0 < correlation_limit < 1:
         raise InputError("alpha and correlation_limit must lie in (0, 1)")
-    from scipy.special import stdtrit
 
     names = tuple(result.ap_values)
     g = np.array([result.ap_values[nm] for nm in names])
@@ -1751,7 +1750,6 @@ def select_additional_parameters(observations, cameras0, points0, io0: InteriorO
     >>> len(removed) >= 1                     # no deformation was simulated
     True
     """
-    from . import additional_parameters as apm
 
     current = list(apm.parameter_names(additional_parameters) if ap_names is None else ap_names)
     removed = []

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import InputError
+from .errors import DegenerateGeometryError, InputError
 from .rotation import _numbers
 
 __all__ = ["ORIGINS", "pixel_center", "subpixel_coordinates", "pixel_to_physical", "flip_rows", "flip_y",
@@ -481,7 +481,6 @@ def normalized_image_coordinates(xy, c: float, rotation, rotation_n, c_n=None):
     >>> normalized_image_coordinates([10.0, -5.0], 150.0, np.eye(3), np.eye(3)).tolist()
     [10.0, -5.0]
     """
-    from .errors import DegenerateGeometryError
 
     try:
         p = np.asarray(xy, dtype=float)

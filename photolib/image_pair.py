@@ -35,13 +35,14 @@ the sympy models in :mod:`photolib.derivations`; all adjustments are solved by :
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from . import derivations
-from .derivations import parallax as _parallax
 from .camera import ExteriorOrientation, InteriorOrientation, as_points, correct_distortion, image_vector
+from .derivations import parallax as _parallax
 from .errors import ConvergenceError, DegenerateGeometryError, InputError, PointBehindCameraError
 from .lsq import Adjustment, gauss_newton
 from .rotation import DEFAULT_ORDER, check_order, rotation_angles, rotation_matrix
@@ -1968,7 +1969,6 @@ def intersection_known_eo(xy1, xy2, eo1: ExteriorOrientation, eo2: ExteriorOrien
             "(base along Y or parallel rays); use intersect_rays (least squares over all four equations)")
     weak = np.abs(dkx) < warn_ratio * np.hypot(dkx, dky)
     if np.any(weak):
-        import warnings
         warnings.warn(f"k_x1 ≈ k_x2 for points {np.flatnonzero(weak).tolist()}: the closed form of §3.1 uses only the "
                       "X equations and is ill-conditioned here (base not along X); prefer intersect_rays",
                       RuntimeWarning, stacklevel=2)

@@ -36,6 +36,7 @@ import numpy as np
 
 from . import _checks
 from .errors import ConvergenceError, DegenerateGeometryError, InputError
+from .lsq import solve_normal_equations
 
 __all__ = ["correlation_coefficient", "correlation_surface", "parabola_vertex", "quadratic_peak", "peak_sharpness",
            "MatchResult", "match_point", "LSMResult", "lsm_shift", "lsm_affine"]
@@ -282,7 +283,6 @@ def parabola_vertex(values, offsets=None):
     >>> round(x, 4), a.round(4).tolist()
     (0.25, [0.95, 0.05, -0.1])
     """
-    from .lsq import solve_normal_equations
 
     R = _array(values, "values", ndim=1, min_size=3)
     if offsets is None:
@@ -352,7 +352,6 @@ def quadratic_peak(values, offsets=None):
     >>> peak.round(10).tolist()
     [0.2, -0.3]
     """
-    from .lsq import solve_normal_equations
 
     R = _array(values, "values", ndim=2, min_size=3)
     if min(R.shape) < 3:

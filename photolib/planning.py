@@ -44,6 +44,7 @@ import numpy as np
 
 from . import _checks
 from .errors import DegenerateGeometryError, InputError
+from .lsq import solve_normal_equations
 from .rectify import RasterGrid, dem_height
 
 __all__ = ["ground_sample_distance", "flying_height_for_gsd", "FlightPlan", "plan_block",
@@ -1432,7 +1433,6 @@ def goniometer_distortion(r, tau, c: float, criterion: str = "lsq") -> Goniomete
     >>> round(goniometer_distortion(r, tau, 150.0).dc, 9)
     2.0
     """
-    from .lsq import solve_normal_equations
 
     rr = _positive_array(r, "r")
     t = _positive_array(tau, "tau")

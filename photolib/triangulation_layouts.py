@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _checks
 from .bundle import bundle_correction_equations
 from .errors import InputError
 from .lsq import block_equations_dense
@@ -851,7 +852,6 @@ def at_accuracy_rule(scale_number: float, flying_height: float, *, image_sigma_u
     >>> round(sxy, 4), round(sz, 4)
     (0.05, 0.0765)
     """
-    from . import _checks
     m_s = _checks.number(scale_number, "scale_number", positive=True)
     h = _checks.number(flying_height, "flying_height", positive=True)
     s_um = _checks.number(image_sigma_um, "image_sigma_um", positive=True)
@@ -890,7 +890,6 @@ def gnss_at_accuracy(scale_number: float, sigma0_um: float) -> tuple:
     >>> [round(v, 3) for v in gnss_at_accuracy(10000, 5.0)]
     [0.075, 0.11, 0.05]
     """
-    from . import _checks
     m_s = _checks.number(scale_number, "scale_number", positive=True)
     s0 = _checks.number(sigma0_um, "sigma0_um", positive=True) * 1e-6
     return 1.5 * m_s * s0, 2.2 * m_s * s0, m_s * s0

@@ -12,13 +12,19 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from .. import projective, terrestrial
+from .. import additional_parameters as apm
+from .. import bundle, projective, synthetic, terrestrial
+from .. import strip_triangulation as st
 from ..camera import ExteriorOrientation, InteriorOrientation
 from ..derivations import hanzl_at as D
 from ..derivations.collinearity import collinearity_terms
 from ..derivations.distortion import brown_correction_terms
 from ..derivations.rotation import rotation_matrix_symbolic
 from ..derivations.symbols import EO_SYMBOLS, X, Y, Z, Xs, Ys, Zs, f, x, x0, y, y0
+from ..rotation import rotation_angles
+from ..single_image import project
+from ..synthetic import Observations
+from ..triangulation_layouts import at_accuracy_rule, correction_equation_system, gnss_at_accuracy
 from ._exact import is_zero
 
 __all__ = ["formula_check", "ebner_base", "close_range_example", "dlt_count", "gnss_rule_example",
@@ -139,14 +145,12 @@ def dlt_count(inputs: dict) -> dict:
 
 def at_rule_example(inputs: dict) -> dict:
     """σ_XY, σ_Z of the §4.3 rule for the given scale and height (illustration)."""
-    from ..triangulation_layouts import at_accuracy_rule
     sxy, sz = at_accuracy_rule(inputs["m_s"], inputs["h_m"])
     return {"sigma_XY": sxy, "sigma_Z": sz}
 
 
 def gnss_rule_example(inputs: dict) -> dict:
     """m_XY, m_Z of INPHO's rule (§4.5) for the given scale and σ₀ (illustration)."""
-    from ..triangulation_layouts import gnss_at_accuracy
     mxy, mz, mxyz = gnss_at_accuracy(inputs["m_s"], inputs["sigma0_um"])
     return {"m_XY": mxy, "m_Z": mz, "m_XYZ": mxyz}
 
@@ -159,7 +163,6 @@ EBNER_TRUE = {"g1": 4e-5, "g3": -8e-7, "g5": 1.5e-6, "g11": 6e-10}
 def wide_angle_block(seed: int = 5, sigma: float = 0.0, points_per_image: int = 40, n_strips: int = 3,
                      images_per_strip: int = 6):
     """A small wide-angle block: c = 153 mm, 23 × 23 cm, m_s = 10 000 (h = 1 530 m), 60 % / 30 % overlap."""
-    from .. import synthetic
     return synthetic.aerial_block(n_strips, images_per_strip, f=153.0, frame_size=230.0, flying_height=1530.0,
                                   points_per_image=points_per_image, sigma=sigma, relief=60.0, seed=seed)
 
@@ -172,9 +175,6 @@ def ebner_simulation(g_true=None, *, seed: int = 5, noise_seed: int = 7, sigma: 
     ``(full, selected, removed, block)``: the adjustment with all twelve, the one after the elimination
     (``None`` if ``select`` is False) and the removals.
     """
-    from .. import additional_parameters as apm
-    from .. import bundle
-    from ..synthetic import Observations
     g_true = EBNER_TRUE if g_true is None else g_true
     blk = wide_angle_block(seed)
     o = blk.observations
@@ -201,8 +201,6 @@ def at_rule_simulation(seeds=(0, 1, 2), sigma_um: float = 3.0) -> dict:
     perimeter control fixed. Returns the pooled RMS of X, Y (per coordinate) and Z in metres, the
     rule's values and the image-space RMS (µm) of the planimetric errors divided by m_s.
     """
-    from .. import bundle
-    from ..triangulation_layouts import at_accuracy_rule
     exy, ez = [], []
     for s in seeds:
         blk = wide_angle_block(s, sigma=sigma_um * 1e-3, points_per_image=30)
@@ -227,8 +225,6 @@ def bundle_vs_models(seeds=(4, 5, 6), sigma_um: float = 3.0) -> dict:
     middle row, the middle of the outer rows); the errors of the remaining tie points are pooled over the
     seeds. Returns RMS X/Y (per coordinate) and Z of both, m.
     """
-    from .. import bundle
-    from .. import strip_triangulation as st
     control_at = [(0, 0.5), (5, 0.5), (0, -1.5), (5, -1.5), (0, -0.5), (5, -0.5), (3, 0.5), (3, -1.5)]
     out = {"bundle": ([], []), "models": ([], [])}
     for s in seeds:
@@ -269,8 +265,6 @@ def normal_patterns(seed: int = 4):
     formulation of §3.4 the tie points are eliminated (model coordinates averaged), so its N holds
     the model blocks only. Returns ``(N_bundle != 0, n_eo_columns, N_models != 0)``.
     """
-    from .. import strip_triangulation as st
-    from ..triangulation_layouts import correction_equation_system
     blk = st.layout_block(1, 4, f=153.0, frame_size=230.0, flying_height=1530.0, seed=seed)
     sysb = correction_equation_system(blk)
     Ab = (np.asarray(sysb.A) != 0).astype(np.int64)
@@ -296,9 +290,6 @@ def convergent_network(seed: int = 0, sigma_um: float = 2.0, n_stations: int = 8
     Returns ``(observations, cameras, points, control_indices, io, order)`` with the truth in
     ``cameras``/``points``; the observations carry Gaussian noise σ (µm).
     """
-    from ..rotation import rotation_angles
-    from ..single_image import project
-    from ..synthetic import Observations
     rng = np.random.default_rng(seed)
     io = InteriorOrientation(f=50.0, x0=0.05, y0=-0.03) if io is None else io
     order = "wak"
@@ -332,7 +323,6 @@ def convergent_network(seed: int = 0, sigma_um: float = 2.0, n_stations: int = 8
 def close_range_simulation(seed: int = 0, sigma_um: float = 2.0) -> dict:
     """§5.2: bundle with the interior orientation (c, x₀, y₀) unknown on :func:`convergent_network`; the mean
     point error σ_p of the free points against the empirical σ_p = q σ_x m_s/√k, and the implied q."""
-    from .. import bundle
     obs, cams, pts, control, io, order = convergent_network(seed, sigma_um)
     rng = np.random.default_rng(seed + 1)
     cams0 = cams.copy()

@@ -22,6 +22,8 @@ from functools import lru_cache
 
 import sympy as sp
 
+from ..errors import InputError
+
 __all__ = ["least_squares_solution", "sequential_blocks", "kalman_update_batch", "transition_series",
            "position_integral"]
 
@@ -103,7 +105,6 @@ def sequential_blocks(m2: int = 1):
     >>> sp.simplify(d["dQ"] - (N.inv() - d["N1"].inv())) == sp.zeros(2, 2)
     True
     """
-    from ..errors import InputError
     if isinstance(m2, bool) or not isinstance(m2, int) or m2 not in (1, 2):
         raise InputError(f"m2 must be the integer 1 or 2, got {m2!r}")
     return _sequential_blocks(m2)
@@ -193,7 +194,6 @@ def transition_series(order: int = 2):
     >>> sp.simplify(d["T"].diff(d["dt"]) - d["F"] * d["T"]) == sp.zeros(2, 2)
     True
     """
-    from ..errors import InputError
     if isinstance(order, bool) or not isinstance(order, int) or order < 1:
         raise InputError(f"order must be an integer ≥ 1, got {order!r}")
     return _transition_series(order)
