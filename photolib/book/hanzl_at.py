@@ -25,7 +25,7 @@ from ..rotation import rotation_angles
 from ..single_image import project
 from ..synthetic import Observations
 from ..triangulation_layouts import at_accuracy_rule, correction_equation_system, gnss_at_accuracy
-from ._exact import is_zero
+from ._exact import zero as _zero
 
 __all__ = ["formula_check", "ebner_base", "close_range_example", "dlt_count", "gnss_rule_example",
            "at_rule_example"]
@@ -34,9 +34,6 @@ __all__ = ["formula_check", "ebner_base", "close_range_example", "dlt_count", "g
 def _ok(flag) -> dict:
     return {"printed_equals_derived": bool(flag)}
 
-
-def _zero(expr) -> bool:
-    return is_zero(sp.expand(expr))
 
 
 def _hanzl_collinearity():

@@ -17,7 +17,7 @@ import sympy as sp
 from .. import direct_orientation as do
 from .. import lidar, pushbroom
 from ..derivations import estimation as E
-from ._exact import is_zero
+from ._exact import zero as _zero
 
 __all__ = ["formula_check", "flight_distance", "earth_rate", "boresight_calibration", "footprint",
            "line_scanner_fov", "stereo_monitor_rate", "imu_bias_for_drift", "SIDEREAL_DAY"]
@@ -25,13 +25,6 @@ __all__ = ["formula_check", "flight_distance", "earth_rate", "boresight_calibrat
 SIDEREAL_DAY = 86164.0905
 """Length of the sidereal day, s (IERS conventions): one turn of the Earth relative to the stars."""
 
-
-def _zero(expr) -> bool:
-    decided = is_zero(expr)
-    if decided is None:
-        decided = (expr.applyfunc(sp.simplify) == sp.zeros(*expr.shape)) if isinstance(expr, sp.MatrixBase) \
-            else sp.simplify(expr) == 0
-    return bool(decided)
 
 
 def _rational_point(symbols) -> dict:

@@ -18,6 +18,7 @@ import sympy as sp
 
 from .. import digital, features as ft, matching, planning
 from ..epipolar import pyramid
+from ._exact import zero as _zero
 
 _NAMES = ("x y dx dy a0 a1 a2 a3 a4 a5 d X Y Z1 Z2 Z3 Z4 Sxx Sxy Syy l1 l2 r c dc tau s m_s p q v t "
           "A1 A2 R1 R2 gx gy l")
@@ -31,9 +32,6 @@ def _parse(text, extra=None):
 def _ok(flag) -> dict:
     return {"printed_equals_derived": bool(flag)}
 
-
-def _zero(e) -> bool:
-    return sp.simplify(sp.expand(e)) == 0
 
 
 def _rows(matrix) -> dict:

@@ -17,15 +17,11 @@ from .. import image_pair as ip
 from ..camera import ExteriorOrientation, InteriorOrientation
 from ..derivations import parallax as D
 from ..single_image import project
+from ._exact import zero as _zero
 
 __all__ = ["formula_check", "example_3_1", "example_3_1_as_printed", "base_ratio", "camera_constant_error",
            "joint_count", "control_counts", "gruber_pair", "GRUBER_TRUTH"]
 
-
-def _zero(expr) -> bool:
-    if isinstance(expr, sp.MatrixBase):
-        return all(sp.simplify(e) == 0 for e in expr)
-    return sp.simplify(sp.expand(expr)) == 0
 
 
 def formula_check(inputs: dict) -> dict:

@@ -22,7 +22,7 @@ from ..derivations import planar_target as D
 from ..derivations.distortion import brown_correction_terms
 from ..derivations.gnss import gnss_rotation_symbolic
 from ..derivations.symbols import Zs, alpha, f, kappa, omega, x, y
-from ._exact import is_zero
+from ._exact import zero as _zero
 
 __all__ = ["formula_check", "corrected_formula_check", "relief_rule", "gnss_pixels", "table4", "table4_as_printed",
            "offset_coefficients", "slope_ratio", "star_exposure", "pixel_sizes", "equivalent_focal",
@@ -38,15 +38,6 @@ B1_PARAMETERS = ("mu", "f", "x0", "y0", "k1", "k2", "k3", "P1", "P2")
 def _ok(flag) -> dict:
     return {"printed_equals_derived": bool(flag)}
 
-
-def _zero(expr) -> bool:
-    """Exact identity test (the fraction-field reduction of ``_exact``; ``simplify`` where it is undecided)."""
-    decided = is_zero(expr)
-    if decided is not None:
-        return decided
-    if isinstance(expr, sp.MatrixBase):
-        return all(sp.simplify(e) == 0 for e in expr)
-    return sp.simplify(expr) == 0
 
 
 def _sin_p_to_k(expr):

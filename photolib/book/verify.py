@@ -389,3 +389,27 @@ def example_table(chapter: int, example_id: str) -> Table:
         cells += [r.as_printed] if with_printed else []
         body.append(cells + [r.status + (f" ({r.detail})" if r.detail else ""), "ok" if r.ok else "CHANGED"])
     return Table(header, body, f"§{example.section} {example.title}")
+
+
+def formula_table(chapter: int, select, title: str) -> Table:
+    """The printed formula · sympy · status table of the notebooks, for formulas of one chapter.
+
+    ``select`` is an id prefix (``"hanzl-7.3.2"``: every formula whose id starts with it, in the
+    chapter's order), a set of ids (in the chapter's order) or a list or tuple of ids (in that order).
+    """
+    formulas = load_chapter(chapter).formulas
+    if isinstance(select, str):
+        chosen = [fm for fm in formulas if fm.id.startswith(select)]
+    elif isinstance(select, (set, frozenset)):
+        chosen = [fm for fm in formulas if fm.id in select]
+    else:
+        by_id = {fm.id: fm for fm in formulas}
+        missing = [i for i in select if i not in by_id]
+        if missing:
+            raise KeyError(f"chapter {chapter} has no formula {missing[0]!r}")
+        chosen = [by_id[i] for i in select]
+    rows = []
+    for fm in chosen:
+        r = check_formula(fm)
+        rows.append([fm.equation, f"{fm.lines[0]}–{fm.lines[1]}", r.computed, fm.status, "ok" if r.ok else "CHANGED"])
+    return Table(["formula", "seed lines", "printed vs sympy", "status", "check"], rows, title)

@@ -158,3 +158,19 @@ def test_page_anchors_must_not_go_back(tmp_path, monkeypatch):
                 load_pages()
         finally:
             load_pages.cache_clear()
+
+
+def test_formula_table_selects_by_prefix_set_or_list():
+    """A prefix and a set keep the chapter's order, a list its own; the rows are check_formula's."""
+    from photolib.book.verify import formula_table
+    ids = [fm.id for fm in load_chapter(8).formulas if fm.id.startswith("hanzl-7.3.2")]
+    assert len(ids) >= 3
+    by_prefix = formula_table(8, "hanzl-7.3.2", "t")
+    assert [row[0] for row in by_prefix.rows] == [
+        fm.equation for fm in load_chapter(8).formulas if fm.id in ids]
+    assert formula_table(8, set(ids), "t").rows == by_prefix.rows
+    assert formula_table(8, ids[::-1], "t").rows == by_prefix.rows[::-1]
+    first = next(fm for fm in load_chapter(8).formulas if fm.id == ids[0])
+    assert by_prefix.rows[0][2:4] == [check_formula(first).computed, first.status]
+    with pytest.raises(KeyError):
+        formula_table(8, ["no-such-formula"], "t")
